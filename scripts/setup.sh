@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Installs what a fresh Debian 12 machine lacks (as root, or through sudo), then configures and builds.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+pkgs="cmake g++ make libeigen3-dev libcgal-dev libboost-dev catch2 nlohmann-json3-dev libbenchmark-dev libomp-dev"
+missing=""
+for p in $pkgs; do dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"; done
+if [ -n "$missing" ]; then
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  echo "installing:$missing"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $missing
+fi
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release ${FFEM_CMAKE_ARGS:-}
+cmake --build build -j "$(nproc)"
