@@ -1,0 +1,690 @@
+#pragma once
+// furniture_fem/simulation.hpp: the ASI-Gauss beam solver, composed at compile time.
+//
+//   Simulation<Element, Integrator, LinearSolver, Contact>
+//
+// Element: an ElementPolicy (elements.hpp); Integrator: an IntegratorPolicy (integrators.hpp);
+// LinearSolver: a LinearSolverPolicy (solvers.hpp); Contact: anything with
+// add_forces(const ContactView&, Eigen::VectorXd&) (NoContact by default; contact.hpp provides the
+// beam/floor/wall contact). Large displacements and rotations are handled by a corotational frame per
+// element (detail/body_system.hpp), so element policies are small-strain kernels.
+//
+// Each body (furniture item) is its own block: its own sparse effective matrix and solver, evaluated
+// in parallel over bodies. Between matrix refreshes a body's factorisation is reused with the body's
+// rigid rotation taken out of the right-hand side and put back into the solution, which keeps the
+// reuse valid while an item tumbles. Nothing allocates inside the time loop.
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "elements.hpp"
+#include "integrators.hpp"
+#include "model.hpp"
+#include "solvers.hpp"
+
+#define FURNITURE_FEM_SIMULATION_INTERNAL
+#include "detail/body_system.hpp"
+#include "detail/rotation.hpp"
+#undef FURNITURE_FEM_SIMULATION_INTERNAL
+
+namespace furniture_fem {
+
+struct SimulationOptions {
+  double dt = 1e-3;
+  Vec3 gravity = Vec3(0, 0, -9.80665);
+  double mass_damping = 0;      // C = mass_damping * M (1/s); 0: no viscous damping
+  int max_iterations = 25;      // for EquilibriumMode::iterate
+  double tolerance = 1e-7;      // residual norm relative to the force scale
+  int refresh_interval = 1;     // refresh each body's matrix every N steps (1: every step)
+  bool geometric_stiffness = true;
+  bool check_finite = true;     // stop with a diagnosis on NaN / divergence
+};
+
+// What a contact model sees: the current state of the structure, all in the table frame.
+struct ContactView {
+  const Model& model;
+  const std::vector<Vec3>& x;      // nodal positions
+  const Eigen::VectorXd& v;        // nodal velocities (6 per node, angular in world axes)
+  double time;
+  double dt;
+};
+
+struct NoContact {
+  void add_forces(const ContactView&, Eigen::VectorXd&) {}
+};
+
+template <class C>
+concept ContactPolicy = requires(C c, const ContactView& view, Eigen::VectorXd& f) { c.add_forces(view, f); };
+
+struct StepInfo {
+  int iterations = 0;
+  double residual = 0;       // relative residual at the end of the step (carried over if not iterated)
+  bool converged = true;
+  int refreshed_bodies = 0;
+  int shifted_points = 0;    // ASI integration point moves in this step
+};
+
+// The energy ledger (J): what the structure holds, and the work done on it.
+struct EnergyLedger {
+  double kinetic = 0, strain = 0, gravity_potential = 0;
+  double external_work = 0;   // base excitation inertial forces and nodal loads
+  double contact_work = 0;    // work of contact forces (negative: friction and damping dissipate)
+  double damping_work = 0;    // work of viscous damping (negative)
+  double plastic_work = 0;    // dissipated in plastic hinges (positive)
+  double initial_total = 0;
+  double total() const { return kinetic + strain + gravity_potential; }
+  // What the integrator lost or made: zero for an exact energy balance.
+  double imbalance() const {
+    return total() - initial_total - external_work - contact_work - damping_work + plastic_work;
+  }
+  double scale() const {
+    return std::max({std::abs(kinetic), std::abs(strain), std::abs(external_work), std::abs(contact_work),
+                     std::abs(plastic_work), std::abs(initial_total), 1e-12});
+  }
+};
+
+template <class Element, class Integrator = Newmark, class LinearSolver = DirectLdltSolver, class Contact = NoContact>
+class Simulation {
+  static_assert(check_element_policy<Element>());
+  static_assert(check_integrator_policy<Integrator>());
+  static_assert(check_linear_solver_policy<LinearSolver>());
+  static_assert(ContactPolicy<Contact>,
+                "furniture_fem: the Contact policy must provide add_forces(const ContactView&, Eigen::VectorXd&); "
+                "see docs/contact.md");
+
+ public:
+  using State = typename Element::State;
+
+  Simulation(const Model& model, Integrator integrator = {}, SimulationOptions options = {}, Contact contact = {})
+      : model_(model), integrator_(integrator), opt_(options), coef_(integrator.coefficients()),
+        contact_(std::move(contact)) {
+    model_.validate();
+    if (!(opt_.dt > 0) || !std::isfinite(opt_.dt))
+      throw ModelError("simulation: dt must be positive and finite (got " + detail::fmt(opt_.dt) + ")");
+    if constexpr (Element::needs_pairs) {
+      for (int e = 0; e < model_.num_elements(); ++e)
+        if (model_.elements()[e].slot == PairSlot::none)
+          throw ModelError(model_.describe_element(e) + ": the " + std::string(Element::name) +
+                           " element needs members split into pairs (MemberOptions::pairs)");
+    }
+    setup();
+  }
+
+  // ---- loads and initial conditions ----
+  // Table (base) acceleration in m/s^2; every mass gets -m a_table(t) (the table frame).
+  void set_table_acceleration(std::function<Vec3(double)> a) { table_acc_ = std::move(a); }
+  // A nodal load (3 forces, 3 moments), scaled by load_scale(t) in dynamics and by the load factor in
+  // statics.
+  void set_nodal_load(int node, const Vec6& load) { nodal_load_.segment<6>(6 * check_node(node)) = load; }
+  void set_load_scale(std::function<double(double)> s) { load_scale_ = std::move(s); }
+  void set_velocity(int node, const Vec6& v) { v_.segment<6>(6 * check_node(node)) = v; }
+  // Rigid-body velocity field (v0 + w x (x - c)) for all nodes of a body.
+  void set_body_velocity(int body, const Vec3& v0, const Vec3& w, const Vec3& c) {
+    for (int n : model_.body(body).nodes) {
+      v_.segment<3>(6 * n) = v0 + w.cross(x_[n] - c);
+      v_.segment<3>(6 * n + 3) = w;
+    }
+  }
+  Contact& contact() { return contact_; }
+
+  // A grounded spring on one DOF (0-2 translations, 3-5 rotations): force k (target - u). The target
+  // is scaled like the loads (load factor in statics, load_scale(t) in dynamics), so a stiff spring
+  // prescribes a displacement (displacement control of a push-over). Returns the spring's index.
+  int add_support_spring(int node, int dof, double k, double target = 0) {
+    check_node(node);
+    if (dof < 0 || dof > 5) throw ModelError("support spring at node " + std::to_string(node) + ": dof must be 0..5");
+    if (!(k > 0) || !std::isfinite(k) || !std::isfinite(target))
+      throw ModelError("support spring at node " + std::to_string(node) + ": k must be positive and finite (got " +
+                       detail::fmt(k) + ")");
+    springs_.push_back({node, dof, k, target});
+    return static_cast<int>(springs_.size()) - 1;
+  }
+  // Force the spring exerts on its node (the support reaction, sign of the DOF).
+  double spring_force(int i) const {
+    const auto& sp = springs_.at(i);
+    return sp.k * (spring_scale() * sp.target - dof_value(sp.node, sp.dof));
+  }
+
+  // Places a node (position and rotation) and recomputes the internal forces: for checks such as
+  // "a rigid rotation produces no internal force". Velocities are left as they are.
+  void set_pose(int node, const Vec3& x, const Mat3& R) {
+    x_[check_node(node)] = x;
+    R_[node] = R;
+  }
+  void update_internal_forces() {
+    evaluate_elements(false);
+    committed_ = trial_;
+  }
+  Vec6 internal_force(int node) const { return fint_.segment<6>(6 * check_node(node)); }
+
+  // The body's static tangent stiffness at the current configuration (dense; for modal analysis of
+  // small models), and the lumped mass diagonal, in the body's local DOF order (see body_nodes).
+  Eigen::MatrixXd stiffness_matrix(int body) {
+    const bool saved = static_;
+    static_ = true;
+    evaluate_body(body, true);
+    static_ = saved;
+    systems_[body].needs_refresh = true;
+    systems_[body].assembled = false;
+    return Eigen::MatrixXd(systems_[body].K);
+  }
+  Eigen::VectorXd mass_diagonal(int body) const {
+    const auto& bs = systems_[body];
+    Eigen::VectorXd m(bs.ndof());
+    for (size_t k = 0; k < bs.nodes.size(); ++k) m.segment<6>(6 * k) = mass_.segment<6>(6 * bs.nodes[k]);
+    return m;
+  }
+  const std::vector<int>& body_nodes(int body) const { return systems_[body].nodes; }
+  bool dof_fixed(int node, int dof) const { return (model_.node(node).fixed >> dof) & 1u; }
+
+  // ---- time stepping ----
+  StepInfo step() {
+    if (!started_) start();
+    const double dt = opt_.dt, b = coef_.beta, g = coef_.gamma, am = coef_.alpha_m, af = coef_.alpha_f;
+    const double t1 = t_ + dt;
+    x0_ = x_;
+    R0_ = R_;
+    vn_ = v_;
+    an_ = a_;
+    Du_.setZero();
+    StepInfo info;
+    auto kinematics = [&] {
+      a_ = (Du_ - dt * vn_ - dt * dt * (0.5 - b) * an_) / (b * dt * dt);
+      v_ = vn_ + dt * ((1 - g) * an_ + g * a_);
+      for (int n = 0; n < model_.num_nodes(); ++n) {
+        x_[n] = x0_[n] + Du_.segment<3>(6 * n);
+        R_[n] = detail::rotation_exp(Du_.segment<3>(6 * n + 3)) * R0_[n];
+      }
+    };
+    kinematics();
+    external_forces(t1, fext1_);
+    contact_forces(t1, fc1_);
+    double rel = residual(fext1_);
+    info.residual = rel;
+    const int max_it = integrator_.mode == EquilibriumMode::iterate ? opt_.max_iterations : 1;
+    for (int it = 0; it < max_it; ++it) {
+      info.refreshed_bodies += solve_bodies();
+      kinematics();
+      evaluate_elements(false);
+      contact_forces(t1, fc1_);
+      rel = residual(fext1_);
+      info.iterations = it + 1;
+      info.residual = rel;
+      if (opt_.check_finite && !std::isfinite(rel))
+        throw SimulationError(t1, "the residual is not finite (NaN or infinity) after iteration " +
+                                      std::to_string(it + 1) + ": the step diverged; try a smaller dt");
+      if (integrator_.mode == EquilibriumMode::iterate && rel < opt_.tolerance) break;
+    }
+    info.converged = integrator_.mode == EquilibriumMode::carry_over || rel < opt_.tolerance;
+    // Energy ledger: trapezoidal work of the forces over the step's displacement increment.
+    for (int n = 0; n < model_.num_nodes(); ++n) {
+      const auto du = Du_.segment<6>(6 * n);
+      ledger_.external_work += 0.5 * du.dot(fext0_.segment<6>(6 * n) + fext1_.segment<6>(6 * n) -
+                                            fgrav_.segment<6>(6 * n) * 2.0);
+      ledger_.contact_work += 0.5 * du.dot(fc0_.segment<6>(6 * n) + fc1_.segment<6>(6 * n));
+      if (opt_.mass_damping > 0)
+        ledger_.damping_work -= 0.5 * opt_.mass_damping *
+                                du.dot((mass_.segment<6>(6 * n).array() * (vn_.segment<6>(6 * n) + v_.segment<6>(6 * n)).array()).matrix());
+    }
+    // Commit element histories, then apply the ASI rule (integration points move for the next step).
+    committed_.swap(trial_);
+    info.shifted_points = shift_integration_points();
+    if constexpr (requires { contact_.commit(); }) contact_.commit();
+    fext0_ = fext1_;
+    fc0_ = fc1_;
+    fnet0_ = fext1_ + fc1_ - fint_;
+    t_ = t1;
+    ++steps_;
+    for (auto& bs : systems_) ++bs.steps_since_refresh;
+    return info;
+  }
+
+  // Steps until time t_end; the observer (if any) is called after every step with (sim, info).
+  template <class Observer>
+  void run_until(double t_end, Observer&& observer) {
+    while (t_ < t_end - 0.5 * opt_.dt) {
+      const StepInfo info = step();
+      observer(*this, info);
+    }
+  }
+  void run_until(double t_end) {
+    run_until(t_end, [](const Simulation&, const StepInfo&) {});
+  }
+
+  // ---- statics: load increments with full Newton (tangent refreshed at every iteration) ----
+  struct StaticResult {
+    int increments = 0, iterations = 0;
+    bool converged = true;
+    double residual = 0;
+  };
+  StaticResult solve_static(int increments = 1, int max_iterations = 50, double tolerance = 1e-9) {
+    StaticResult res;
+    const bool saved_static = static_;
+    static_ = true;
+    if (!started_) start();
+    for (int k = 1; k <= increments; ++k) {
+      load_factor_ = double(k) / increments;
+      external_forces(t_, fext1_);
+      bool ok = false;
+      for (int it = 0; it < max_iterations; ++it) {
+        evaluate_elements(true);
+        for (auto& bs : systems_) bs.needs_refresh = true;
+        Du_.setZero();
+        const double rel = static_residual();
+        res.residual = rel;
+        if (rel < tolerance) {
+          ok = true;
+          break;
+        }
+        solve_bodies();
+        ++res.iterations;
+        for (int n = 0; n < model_.num_nodes(); ++n) {
+          x_[n] += Du_.segment<3>(6 * n);
+          R_[n] = detail::rotation_exp(Du_.segment<3>(6 * n + 3)) * R_[n];
+        }
+        if (!Du_.allFinite()) throw SimulationError(t_, "static solve: the increment is not finite");
+      }
+      committed_ = trial_;
+      shift_integration_points();
+      res.increments = k;
+      if (!ok) {
+        res.converged = false;
+        break;
+      }
+    }
+    static_ = saved_static;
+    return res;
+  }
+  void set_load_factor(double f) { load_factor_ = f; }
+
+  // ---- results ----
+  double time() const { return t_; }
+  long steps() const { return steps_; }
+  const Model& model() const { return model_; }
+  const Vec3& position(int n) const { return x_[n]; }
+  Vec3 displacement(int n) const { return x_[n] - model_.node(n).X; }
+  const Mat3& rotation(int n) const { return R_[n]; }
+  Vec6 velocity(int n) const { return v_.segment<6>(6 * n); }
+  Vec6 acceleration(int n) const { return a_.segment<6>(6 * n); }
+  const std::vector<Vec3>& positions() const { return x_; }
+  const Eigen::VectorXd& velocities() const { return v_; }
+  double nodal_mass(int n) const { return mass_[6 * n]; }
+  double nodal_rotary_inertia(int n) const { return mass_[6 * n + 3]; }
+  const State& element_state(int e) const { return committed_[e]; }
+  // Current element frame (columns: local x, y, z in world axes).
+  Mat3 element_frame(int e) const { return frames_[e]; }
+
+  // Sectional forces (local axes of the element) at its stress evaluation point, or at any xi.
+  SectionForces section_forces(int e) const {
+    return Element::section_forces(props_[e], committed_[e], d_[e]);
+  }
+  SectionForces section_forces_at(int e, double xi) const {
+    const SectionForces s = section_forces(e);
+    const Vec6 v = detail::forces_at(s.as_vector(), s.xi, xi, props_[e].L0);
+    return {v[0], v[1], v[2], v[3], v[4], v[5], xi};
+  }
+
+  Vec3 linear_momentum() const {
+    Vec3 p = Vec3::Zero();
+    for (int n = 0; n < model_.num_nodes(); ++n) p += mass_[6 * n] * v_.segment<3>(6 * n);
+    return p;
+  }
+  Vec3 angular_momentum(const Vec3& about = Vec3::Zero()) const {
+    Vec3 L = Vec3::Zero();
+    for (int n = 0; n < model_.num_nodes(); ++n)
+      L += (x_[n] - about).cross(mass_[6 * n] * v_.segment<3>(6 * n)) + mass_[6 * n + 3] * v_.segment<3>(6 * n + 3);
+    return L;
+  }
+  EnergyLedger energy() const {
+    EnergyLedger e = ledger_;
+    e.kinetic = 0.5 * (v_.array() * v_.array() * mass_.array()).sum();
+    e.gravity_potential = 0;
+    for (int n = 0; n < model_.num_nodes(); ++n) e.gravity_potential -= mass_[6 * n] * opt_.gravity.dot(x_[n]);
+    e.strain = 0;
+    e.plastic_work = 0;
+    for (int el = 0; el < model_.num_elements(); ++el) {
+      e.strain += strain_energy(el);
+      if constexpr (requires { committed_[el].plastic_work; }) e.plastic_work += committed_[el].plastic_work;
+    }
+    return e;
+  }
+  long factorizations() const {
+    long f = 0;
+    for (const auto& s : solvers_) f += s->factorizations();
+    return f;
+  }
+  const SimulationOptions& options() const { return opt_; }
+  const Integrator& integrator() const { return integrator_; }
+
+ private:
+  int check_node(int n) const {
+    if (n < 0 || n >= model_.num_nodes()) throw ModelError("node index out of range: " + std::to_string(n));
+    return n;
+  }
+
+  void setup() {
+    const int nn = model_.num_nodes(), ne = model_.num_elements();
+    x_.resize(nn);
+    R_.assign(nn, Mat3::Identity());
+    for (int n = 0; n < nn; ++n) x_[n] = model_.node(n).X;
+    v_.setZero(6 * nn);
+    a_.setZero(6 * nn);
+    for (auto* v : {&Du_, &fint_, &fext0_, &fext1_, &fc0_, &fc1_, &fnet0_, &mass_, &nodal_load_, &fgrav_, &r_})
+      v->setZero(6 * nn);
+    props_.resize(ne);
+    E0_.resize(ne);
+    frames_.resize(ne);
+    d_.assign(ne, Vec12::Zero());
+    fl_.assign(ne, Vec12::Zero());
+    committed_.resize(ne);
+    for (int e = 0; e < ne; ++e) {
+      const auto& el = model_.elements()[e];
+      props_[e] = ElementProps::from_model(model_, e);
+      E0_[e] = detail::initial_frame(model_.node(el.n1).X, model_.node(el.n2).X, el.y_ref);
+      frames_[e] = E0_[e];
+      committed_[e] = Element::initial_state(props_[e]);
+      // Lumped mass: half the element's mass on each node; rotary inertia isotropic, rho (Iy + Iz) L / 2
+      // per node and axis (the section's polar term; isotropic so that no gyroscopic term arises).
+      const double m = el.line_mass * props_[e].L0;
+      const auto& s = model_.section_of(e);
+      const double J = el.line_mass / s.A * (s.Iy + s.Iz) * props_[e].L0;
+      for (int node : {el.n1, el.n2}) {
+        mass_.segment<3>(6 * node).array() += 0.5 * m;
+        mass_.segment<3>(6 * node + 3).array() += 0.5 * J;
+      }
+    }
+    trial_ = committed_;
+    for (int n = 0; n < nn; ++n)
+      if (!(mass_[6 * n] > 0) && model_.node(n).fixed != ALL_DOFS)
+        throw ModelError("node " + std::to_string(n) + " of body '" + model_.body(model_.node(n).body).name +
+                         "' has no mass (its elements have zero line mass) and is not fixed");
+    local_index_.assign(nn, -1);
+    systems_.resize(model_.num_bodies());
+    solvers_.resize(model_.num_bodies());
+    for (int b = 0; b < model_.num_bodies(); ++b) {
+      auto& bs = systems_[b];
+      bs.nodes = model_.body(b).nodes;
+      bs.elements = model_.body(b).elements;
+      for (size_t k = 0; k < bs.nodes.size(); ++k) local_index_[bs.nodes[k]] = static_cast<int>(k);
+      detail::build_pattern(bs, model_, local_index_);
+      bs.fixed.assign(bs.ndof(), 0);
+      for (size_t k = 0; k < bs.nodes.size(); ++k)
+        for (int i = 0; i < 6; ++i)
+          if (model_.node(bs.nodes[k]).fixed & (1u << i)) bs.fixed[6 * k + i] = 1;
+      Vec3 c = Vec3::Zero();
+      for (int n : bs.nodes) c += model_.node(n).X;
+      bs.Xc = bs.nodes.empty() ? c : Vec3(c / bs.nodes.size());
+      solvers_[b] = std::make_unique<LinearSolver>();
+      solvers_[b]->analyse(bs.K);
+    }
+  }
+
+  // Initial accelerations from the equations of motion, and the first forces.
+  void start() {
+    started_ = true;
+    evaluate_elements(false);
+    committed_ = trial_;
+    if (static_) return;
+    external_forces(t_, fext0_);
+    contact_forces(t_, fc0_);
+    fnet0_ = fext0_ + fc0_ - fint_;
+    for (int i = 0; i < a_.size(); ++i) a_[i] = is_fixed(i) ? 0.0 : fnet0_[i] / mass_[i];
+    ledger_.initial_total = energy().total();
+  }
+
+  bool is_fixed(int dof) const { return (model_.node(dof / 6).fixed >> (dof % 6)) & 1u; }
+
+  void external_forces(double t, Eigen::VectorXd& f) {
+    const Vec3 at = table_acc_ ? table_acc_(t) : Vec3::Zero();
+    const double scale = static_ ? load_factor_ : (load_scale_ ? load_scale_(t) : 1.0);
+    for (int n = 0; n < model_.num_nodes(); ++n) {
+      const double m = mass_[6 * n];
+      fgrav_.segment<3>(6 * n) = m * opt_.gravity * (static_ ? load_factor_ : 1.0);
+      f.segment<3>(6 * n) = fgrav_.segment<3>(6 * n) - (static_ ? Vec3::Zero() : Vec3(m * at));
+      f.segment<3>(6 * n + 3).setZero();
+    }
+    f += scale * nodal_load_;
+  }
+
+  void contact_forces(double t, Eigen::VectorXd& f) {
+    f.setZero();
+    if constexpr (!std::is_same_v<Contact, NoContact>) {
+      const ContactView view{model_, x_, v_, t, opt_.dt};
+      contact_.add_forces(view, f);
+    }
+  }
+
+  // Element forces (and, where a body's matrix is due, its tangent) at the current configuration.
+  void evaluate_elements(bool assemble_all) {
+    const int nb = static_cast<int>(systems_.size());
+#if defined(FFEM_HAVE_OPENMP)
+#pragma omp parallel for schedule(dynamic, 1)
+#endif
+    for (int b = 0; b < nb; ++b) evaluate_body(b, assemble_all || systems_[b].needs_refresh);
+  }
+
+  void evaluate_body(int b, bool assemble) {
+    auto& bs = systems_[b];
+    double* Kv = bs.K.valuePtr();
+    if (assemble) std::fill(Kv, Kv + bs.K.nonZeros(), 0.0);
+    for (int n : bs.nodes) fint_.segment<6>(6 * n).setZero();
+    const double kf = static_ ? 1.0 : (1 - coef_.alpha_f);
+    Vec12 f, fg;
+    Mat12 k, kg;
+    for (size_t idx = 0; idx < bs.elements.size(); ++idx) {
+      const int e = bs.elements[idx];
+      const auto& el = model_.elements()[e];
+      const auto cr = detail::corotate(x_[el.n1], x_[el.n2], R_[el.n1], R_[el.n2], E0_[e], props_[e].L0);
+      frames_[e] = cr.E;
+      d_[e] = cr.d;
+      Element::response(props_[e], committed_[e], cr.d, f, k, trial_[e]);
+      fl_[e] = f;
+      for (int blk = 0; blk < 4; ++blk) fg.segment<3>(3 * blk) = cr.E * f.segment<3>(3 * blk);
+      fint_.segment<6>(6 * el.n1) += fg.head<6>();
+      fint_.segment<6>(6 * el.n2) += fg.tail<6>();
+      if (assemble) {
+        for (int i = 0; i < 4; ++i)
+          for (int j = 0; j < 4; ++j)
+            kg.block<3, 3>(3 * i, 3 * j) = cr.E * k.block<3, 3>(3 * i, 3 * j) * cr.E.transpose();
+        if (opt_.geometric_stiffness) {
+          // String stiffness of the axial force: N / l (I - e1 e1^T) on the translations.
+          const Mat3 G = f[6] / cr.l * (Mat3::Identity() - cr.E.col(0) * cr.E.col(0).transpose());
+          kg.block<3, 3>(0, 0) += G;
+          kg.block<3, 3>(6, 6) += G;
+          kg.block<3, 3>(0, 6) -= G;
+          kg.block<3, 3>(6, 0) -= G;
+        }
+        const auto& slots = bs.element_slots[idx];
+        for (int i = 0; i < 12; ++i)
+          for (int j = 0; j < 12; ++j) Kv[slots[i * 12 + j]] += kf * kg(i, j);
+      }
+    }
+    for (const auto& sp : springs_) {
+      if (model_.node(sp.node).body != b) continue;
+      const int i = 6 * sp.node + sp.dof;
+      fint_[i] += sp.k * (dof_value(sp.node, sp.dof) - spring_scale() * sp.target);
+      if (assemble) Kv[bs.diag_slot[6 * local_index_[sp.node] + sp.dof]] += kf * sp.k;
+    }
+    if (assemble) {
+      const double dt = opt_.dt;
+      const double mf = static_ ? 0.0 : (1 - coef_.alpha_m) / (coef_.beta * dt * dt) +
+                                            (1 - coef_.alpha_f) * coef_.gamma / (coef_.beta * dt) * opt_.mass_damping;
+      for (size_t k2 = 0; k2 < bs.nodes.size(); ++k2)
+        for (int i = 0; i < 6; ++i) {
+          const int ld = 6 * static_cast<int>(k2) + i;
+          Kv[bs.diag_slot[ld]] += mf * mass_[6 * bs.nodes[k2] + i];
+        }
+      // Fixed DOFs: identity rows and columns, so the pattern (and the symbolic analysis) stays.
+      for (int col = 0; col < bs.ndof(); ++col)
+        for (SparseMatrix::InnerIterator it(bs.K, col); it; ++it)
+          if (bs.fixed[it.row()] || bs.fixed[col]) it.valueRef() = (it.row() == col) ? 1.0 : 0.0;
+      bs.assembled = true;
+    }
+  }
+
+  // Residual of the generalized-alpha equations; returns its norm relative to the force scale.
+  double residual(const Eigen::VectorXd& fext1) {
+    const double am = coef_.alpha_m, af = coef_.alpha_f, c = opt_.mass_damping;
+    double num = 0, den = 0;
+    for (int i = 0; i < r_.size(); ++i) {
+      const double f1 = fext1[i] + fc1_[i] - fint_[i];
+      const double inertia = mass_[i] * ((1 - am) * a_[i] + am * an_[i]);
+      const double damping = c * mass_[i] * ((1 - af) * v_[i] + af * vn_[i]);
+      const double ri = is_fixed(i) ? 0.0 : (1 - af) * f1 + af * fnet0_[i] - inertia - damping;
+      r_[i] = ri;
+      num += ri * ri;
+      den += fext1[i] * fext1[i] + fint_[i] * fint_[i] + inertia * inertia + fc1_[i] * fc1_[i];
+    }
+    return std::sqrt(num / std::max(den, 1e-300));
+  }
+  double static_residual() {
+    double num = 0, den = 0;
+    for (int i = 0; i < r_.size(); ++i) {
+      const double ri = is_fixed(i) ? 0.0 : fext1_[i] - fint_[i];
+      r_[i] = ri;
+      num += ri * ri;
+      den += fext1_[i] * fext1_[i] + fint_[i] * fint_[i];
+    }
+    return std::sqrt(num / std::max(den, 1e-300));
+  }
+
+  // Solves every body's system for the residual r_ and adds the result to Du_. Returns the number
+  // of bodies whose matrix was refreshed.
+  int solve_bodies() {
+    int refreshed = 0;
+    const int nb = static_cast<int>(systems_.size());
+    for (auto& bs : systems_)
+      if (bs.steps_since_refresh >= opt_.refresh_interval) bs.needs_refresh = true;
+    bool any = false;
+    for (auto& bs : systems_) any = any || (bs.needs_refresh && !bs.assembled);
+    if (any) {
+#if defined(FFEM_HAVE_OPENMP)
+#pragma omp parallel for schedule(dynamic, 1)
+#endif
+      for (int b = 0; b < nb; ++b)
+        if (systems_[b].needs_refresh && !systems_[b].assembled) evaluate_body(b, true);
+    }
+    bool failed = false;
+#if defined(FFEM_HAVE_OPENMP)
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : refreshed) reduction(|| : failed)
+#endif
+    for (int b = 0; b < nb; ++b) {
+      auto& bs = systems_[b];
+      const bool reuse = opt_.refresh_interval > 1 && !static_;
+      Mat3 Q = Mat3::Identity();
+      if (reuse) Q = body_rotation(bs);
+      if (bs.needs_refresh) {
+        try {
+          solvers_[b]->factorize(bs.K);
+        } catch (const std::exception&) {
+          failed = true;  // never throw out of a parallel region
+          continue;
+        }
+        bs.Q_factor = Q;
+        bs.needs_refresh = false;
+        bs.assembled = false;
+        bs.steps_since_refresh = 0;
+        ++refreshed;
+      }
+      // Take the body's rigid rotation since the factorisation out of the right-hand side (P^T r),
+      // solve with the old matrix, put it back (P y): exact for a rigidly rotated body.
+      const Mat3 P = Q * bs.Q_factor.transpose();
+      for (size_t k = 0; k < bs.nodes.size(); ++k) {
+        const int g = bs.nodes[k];
+        bs.r.segment<3>(6 * k) = P.transpose() * r_.segment<3>(6 * g);
+        bs.r.segment<3>(6 * k + 3) = P.transpose() * r_.segment<3>(6 * g + 3);
+      }
+      if (!solvers_[b]->solve(bs.r, bs.dx)) failed = true;
+      for (size_t k = 0; k < bs.nodes.size(); ++k) {
+        const int g = bs.nodes[k];
+        Du_.segment<3>(6 * g) += P * bs.dx.segment<3>(6 * k);
+        Du_.segment<3>(6 * g + 3) += P * bs.dx.segment<3>(6 * k + 3);
+      }
+    }
+    if (failed)
+      throw SimulationError(t_, "the linear solver failed: the effective matrix is not positive definite or the "
+                                "solution is not finite (an unsupported static model, or a diverging step)");
+    return refreshed;
+  }
+
+  double dof_value(int n, int dof) const {
+    return dof < 3 ? x_[n][dof] - model_.node(n).X[dof] : detail::rotation_log(R_[n])[dof - 3];
+  }
+  double spring_scale() const { return static_ ? load_factor_ : (load_scale_ ? load_scale_(t_) : 1.0); }
+
+  Mat3 body_rotation(const detail::BodySystem& bs) const {
+    Vec3 xc = Vec3::Zero();
+    for (int n : bs.nodes) xc += x_[n];
+    xc /= std::max<size_t>(1, bs.nodes.size());
+    return detail::best_rotation(
+        static_cast<int>(bs.nodes.size()),
+        [&](int i) { return std::pair<Vec3, Vec3>(model_.node(bs.nodes[i]).X, x_[bs.nodes[i]]); }, bs.Xc, xc);
+  }
+
+  int shift_integration_points() {
+    int shifted = 0;
+    if constexpr (requires(State s) { s.hinge; s.plastic_increment; }) {
+      for (int e = 0; e < model_.num_elements(); ++e) {
+        const int p = model_.elements()[e].partner;
+        State* partner = p >= 0 ? &committed_[p] : nullptr;
+        const ElementProps* pp = p >= 0 ? &props_[p] : nullptr;
+        if (Element::shift_integration_point(props_[e], committed_[e], d_[e], partner, pp)) {
+          ++shifted;
+          systems_[model_.elements()[e].body].needs_refresh = true;
+        }
+      }
+      if (shifted) {
+        // Forces at the new integration points, so the next residual sees them.
+        evaluate_elements(false);
+        committed_ = trial_;
+      }
+    }
+    return shifted;
+  }
+
+  double strain_energy(int e) const {
+    if constexpr (requires(State s) { s.eps_p; }) {
+      const auto s = Element::section_forces(props_[e], committed_[e], d_[e]).as_vector();
+      double w = 0;
+      for (int i = 0; i < 6; ++i) w += 0.5 * s[i] * s[i] / props_[e].D[i];
+      return w * props_[e].L0;
+    } else {
+      return 0.5 * d_[e].dot(fl_[e]);
+    }
+  }
+
+  const Model& model_;
+  Integrator integrator_;
+  SimulationOptions opt_;
+  IntegratorCoefficients coef_;
+  Contact contact_;
+  std::function<Vec3(double)> table_acc_;
+  std::function<double(double)> load_scale_;
+  double t_ = 0, load_factor_ = 1;
+  long steps_ = 0;
+  bool started_ = false, static_ = false;
+
+  std::vector<Vec3> x_, x0_;
+  std::vector<Mat3> R_, R0_;
+  Eigen::VectorXd v_, a_, vn_, an_, Du_, r_, fint_, fext0_, fext1_, fc0_, fc1_, fnet0_, mass_, nodal_load_, fgrav_;
+  std::vector<ElementProps> props_;
+  std::vector<Mat3> E0_, frames_;
+  std::vector<Vec12> d_, fl_;
+  std::vector<State> committed_, trial_;
+  std::vector<int> local_index_;
+  std::vector<detail::BodySystem> systems_;
+  std::vector<std::unique_ptr<LinearSolver>> solvers_;  // Eigen's solvers are not copyable
+  EnergyLedger ledger_;
+  struct Spring {
+    int node, dof;
+    double k, target;
+  };
+  std::vector<Spring> springs_;
+};
+
+}  // namespace furniture_fem
