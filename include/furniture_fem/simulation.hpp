@@ -154,6 +154,7 @@ class Simulation {
   // "a rigid rotation produces no internal force". Velocities are left as they are.
   void set_pose(int node, const Vec3& x, const Mat3& R) {
     x_[check_node(node)] = x;
+    u_[node] = x - model_.node(node).X;
     R_[node] = R;
   }
   void update_internal_forces() {
@@ -187,7 +188,7 @@ class Simulation {
     if (!started_) start();
     const double dt = opt_.dt, b = coef_.beta, g = coef_.gamma, am = coef_.alpha_m, af = coef_.alpha_f;
     const double t1 = t_ + dt;
-    x0_ = x_;
+    u0_ = u_;
     R0_ = R_;
     vn_ = v_;
     an_ = a_;
@@ -197,7 +198,8 @@ class Simulation {
       a_ = (Du_ - dt * vn_ - dt * dt * (0.5 - b) * an_) / (b * dt * dt);
       v_ = vn_ + dt * ((1 - g) * an_ + g * a_);
       for (int n = 0; n < model_.num_nodes(); ++n) {
-        x_[n] = x0_[n] + Du_.segment<3>(6 * n);
+        u_[n] = u0_[n] + Du_.segment<3>(6 * n);
+        x_[n] = model_.node(n).X + u_[n];
         R_[n] = detail::rotation_exp(Du_.segment<3>(6 * n + 3)) * R0_[n];
       }
     };
@@ -284,7 +286,8 @@ class Simulation {
         solve_bodies();
         ++res.iterations;
         for (int n = 0; n < model_.num_nodes(); ++n) {
-          x_[n] += Du_.segment<3>(6 * n);
+          u_[n] += Du_.segment<3>(6 * n);
+          x_[n] = model_.node(n).X + u_[n];
           R_[n] = detail::rotation_exp(Du_.segment<3>(6 * n + 3)) * R_[n];
         }
         if (!Du_.allFinite()) throw SimulationError(t_, "static solve: the increment is not finite");
@@ -307,7 +310,7 @@ class Simulation {
   long steps() const { return steps_; }
   const Model& model() const { return model_; }
   const Vec3& position(int n) const { return x_[n]; }
-  Vec3 displacement(int n) const { return x_[n] - model_.node(n).X; }
+  const Vec3& displacement(int n) const { return u_[n]; }
   const Mat3& rotation(int n) const { return R_[n]; }
   Vec6 velocity(int n) const { return v_.segment<6>(6 * n); }
   Vec6 acceleration(int n) const { return a_.segment<6>(6 * n); }
@@ -370,6 +373,7 @@ class Simulation {
   void setup() {
     const int nn = model_.num_nodes(), ne = model_.num_elements();
     x_.resize(nn);
+    u_.assign(nn, Vec3::Zero());
     R_.assign(nn, Mat3::Identity());
     for (int n = 0; n < nn; ++n) x_[n] = model_.node(n).X;
     v_.setZero(6 * nn);
@@ -479,7 +483,8 @@ class Simulation {
     for (size_t idx = 0; idx < bs.elements.size(); ++idx) {
       const int e = bs.elements[idx];
       const auto& el = model_.elements()[e];
-      const auto cr = detail::corotate(x_[el.n1], x_[el.n2], R_[el.n1], R_[el.n2], E0_[e], props_[e].L0);
+      const auto cr = detail::corotate(model_.node(el.n1).X, model_.node(el.n2).X, u_[el.n1], u_[el.n2], R_[el.n1],
+                                       R_[el.n2], E0_[e], props_[e].L0);
       frames_[e] = cr.E;
       d_[e] = cr.d;
       Element::response(props_[e], committed_[e], cr.d, f, k, trial_[e]);
@@ -613,7 +618,7 @@ class Simulation {
   }
 
   double dof_value(int n, int dof) const {
-    return dof < 3 ? x_[n][dof] - model_.node(n).X[dof] : detail::rotation_log(R_[n])[dof - 3];
+    return dof < 3 ? u_[n][dof] : detail::rotation_log(R_[n])[dof - 3];
   }
   double spring_scale() const { return static_ ? load_factor_ : (load_scale_ ? load_scale_(t_) : 1.0); }
 
@@ -669,7 +674,7 @@ class Simulation {
   long steps_ = 0;
   bool started_ = false, static_ = false;
 
-  std::vector<Vec3> x_, x0_;
+  std::vector<Vec3> x_, u_, u0_;  // positions, displacements (kept apart for precision)
   std::vector<Mat3> R_, R0_;
   Eigen::VectorXd v_, a_, vn_, an_, Du_, r_, fint_, fext0_, fext1_, fc0_, fc1_, fnet0_, mass_, nodal_load_, fgrav_;
   std::vector<ElementProps> props_;

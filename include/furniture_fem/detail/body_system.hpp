@@ -25,10 +25,15 @@ struct CorotationalFrame {
   Vec12 d;      // local deformation DOFs for the element policy
 };
 
-inline CorotationalFrame corotate(const Vec3& x1, const Vec3& x2, const Mat3& R1, const Mat3& R2,
-                                  const Mat3& E0, double L0) {
+// Positions enter as initial coordinates plus displacements, and the elongation is formed as
+// (2 dX.du + du.du) / (l + L0): both keep full precision in the deformation even though the
+// coordinates are about 1 m and the strains about 1e-9 (a stiff axial member would otherwise leave a
+// round-off floor of EA/L0 * 1e-16 m in its force).
+inline CorotationalFrame corotate(const Vec3& X1, const Vec3& X2, const Vec3& u1, const Vec3& u2, const Mat3& R1,
+                                  const Mat3& R2, const Mat3& E0, double L0) {
   CorotationalFrame c;
-  const Vec3 dx = x2 - x1;
+  const Vec3 dX = X2 - X1, du = u2 - u1;
+  const Vec3 dx = dX + du;
   c.l = dx.norm();
   const Vec3 e1 = dx / c.l;
   const Vec3 q = 0.5 * (R1 * E0.col(1) + R2 * E0.col(1));
@@ -40,7 +45,7 @@ inline CorotationalFrame corotate(const Vec3& x1, const Vec3& x2, const Mat3& R1
   c.E.col(2) = e3;
   c.d.setZero();
   c.d.segment<3>(3) = rotation_log(c.E.transpose() * R1 * E0);
-  c.d[6] = c.l - L0;
+  c.d[6] = (2.0 * dX.dot(du) + du.squaredNorm()) / (c.l + L0);
   c.d.segment<3>(9) = rotation_log(c.E.transpose() * R2 * E0);
   return c;
 }

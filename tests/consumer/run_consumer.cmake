@@ -1,0 +1,27 @@
+# Builds and runs a consumer project; used by ctest. Variables: MODE (find_package|subdirectory),
+# SRC (this folder), BIN (scratch folder), FFEM_SOURCE_DIR, FFEM_BINARY_DIR.
+file(REMOVE_RECURSE ${BIN})
+set(args)
+if(MODE STREQUAL "find_package")
+  execute_process(COMMAND ${CMAKE_COMMAND} --install ${FFEM_BINARY_DIR} --prefix ${BIN}/prefix
+                  RESULT_VARIABLE rc)
+  if(rc)
+    message(FATAL_ERROR "install failed")
+  endif()
+  set(args -DCMAKE_PREFIX_PATH=${BIN}/prefix)
+else()
+  set(args -DFFEM_SOURCE_DIR=${FFEM_SOURCE_DIR})
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${SRC}/${MODE} -B ${BIN}/build -DCMAKE_BUILD_TYPE=Release ${args}
+                RESULT_VARIABLE rc)
+if(rc)
+  message(FATAL_ERROR "configure of the ${MODE} consumer failed")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} --build ${BIN}/build RESULT_VARIABLE rc)
+if(rc)
+  message(FATAL_ERROR "build of the ${MODE} consumer failed")
+endif()
+execute_process(COMMAND ${BIN}/build/frame RESULT_VARIABLE rc)
+if(rc)
+  message(FATAL_ERROR "the ${MODE} consumer's program failed")
+endif()
