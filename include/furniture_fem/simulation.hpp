@@ -205,7 +205,13 @@ class Simulation {
     };
     kinematics();
     external_forces(t1, fext1_);
+    // The predictor is "no motion" (Du = 0), so the element forces of the last step still hold. Its
+    // Newmark velocity, (1 - gamma / beta) v_n, has the wrong sign, though, and friction or the
+    // paper's damping evaluated there would pump energy: contact sees the constant-acceleration
+    // estimate v_n + dt a_n instead.
+    v_ = vn_ + dt * an_;
     contact_forces(t1, fc1_);
+    v_ = vn_ + dt * ((1 - g) * an_ + g * a_);
     double rel = residual(fext1_);
     info.residual = rel;
     const int max_it = integrator_.mode == EquilibriumMode::iterate ? opt_.max_iterations : 1;
