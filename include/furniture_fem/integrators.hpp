@@ -83,6 +83,20 @@ struct HhtAlpha {
   std::string name() const { return "HHT-alpha (alpha " + std::to_string(alpha) + ")"; }
 };
 
+// Any member of the family chosen at run time (a scene file, a parameter study): one type, so a
+// program that lets its user pick the scheme compiles the solver once.
+struct RuntimeIntegrator {
+  IntegratorCoefficients coef;
+  EquilibriumMode mode = EquilibriumMode::carry_over;
+  std::string label = "runtime";
+  template <class I>
+  static RuntimeIntegrator from(const I& i) {
+    return {i.coefficients(), i.mode, i.name()};
+  }
+  IntegratorCoefficients coefficients() const { return coef; }
+  std::string name() const { return label; }
+};
+
 // Spectral radius of a generalized-alpha scheme for x'' + omega^2 x = 0 at omega dt = w: the largest
 // eigenvalue modulus of the one-step map on (x, v dt, a dt^2), built by stepping the three unit states.
 inline double spectral_radius(const IntegratorCoefficients& c, double w) {
