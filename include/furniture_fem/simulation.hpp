@@ -131,6 +131,23 @@ class Simulation {
     }
   }
   Contact& contact() { return contact_; }
+  const Contact& contact_model() const { return contact_; }
+
+  // Models a body as rigid (6 DOF) with the same nodes, masses and contact geometry: its elements
+  // carry no forces and are not evaluated; its motion is solved in the rigid subspace (Newton on the
+  // body's translation and rotation, the residual reduced from the nodal one). Call before the first
+  // step. "Model only what a scene needs": an item whose internal forces nobody asked for.
+  void set_rigid(int body, bool rigid = true) {
+    if (started_) throw ModelError("set_rigid: call before the first step");
+    if (body < 0 || body >= model_.num_bodies()) throw ModelError("set_rigid: unknown body " + std::to_string(body));
+    if (rigid)
+      for (int n : model_.body(body).nodes)
+        if (model_.node(n).fixed)
+          throw ModelError("set_rigid: body '" + model_.body(body).name + "' has supported node " + std::to_string(n) +
+                           "; a rigid body must be free");
+    systems_[body].rigid = rigid;
+  }
+  bool is_rigid(int body) const { return systems_.at(body).rigid; }
 
   // A grounded spring on one DOF (0-2 translations, 3-5 rotations): force k (target - u). The target
   // is scaled like the loads (load factor in statics, load_scale(t) in dynamics), so a stiff spring
@@ -190,6 +207,12 @@ class Simulation {
     const double t1 = t_ + dt;
     u0_ = u_;
     R0_ = R_;
+    for (auto& bs : systems_)
+      if (bs.rigid) {
+        bs.rigid_c0 = mass_centre(bs);
+        bs.rigid_dc.setZero();
+        bs.rigid_Q.setIdentity();
+      }
     vn_ = v_;
     an_ = a_;
     Du_.setZero();
@@ -306,6 +329,10 @@ class Simulation {
         break;
       }
     }
+    // A dynamic step after a static solve starts from this state: start() again, which assembles the
+    // effective (dynamic) matrix in place of the static tangent left flagged as assembled, and sets the
+    // initial accelerations, forces and energy from the static equilibrium.
+    started_ = false;
     static_ = saved_static;
     return res;
   }
@@ -452,6 +479,7 @@ class Simulation {
   void external_forces(double t, Eigen::VectorXd& f) {
     const Vec3 at = table_acc_ ? table_acc_(t) : Vec3::Zero();
     const double scale = static_ ? load_factor_ : (load_scale_ ? load_scale_(t) : 1.0);
+    spring_scale_ = scale;  // spring targets follow the loads: the same time t_{n+1} (or load factor)
     for (int n = 0; n < model_.num_nodes(); ++n) {
       const double m = mass_[6 * n];
       fgrav_.segment<3>(6 * n) = m * opt_.gravity * (static_ ? load_factor_ : 1.0);
@@ -483,6 +511,10 @@ class Simulation {
     double* Kv = bs.K.valuePtr();
     if (assemble) std::fill(Kv, Kv + bs.K.nonZeros(), 0.0);
     for (int n : bs.nodes) fint_.segment<6>(6 * n).setZero();
+    if (bs.rigid) {
+      bs.assembled = true;  // nothing to assemble: the rigid solve builds its 6 x 6 matrix itself
+      return;
+    }
     const double kf = static_ ? 1.0 : (1 - coef_.alpha_f);
     Vec12 f, fg;
     Mat12 k, kg;
@@ -586,6 +618,16 @@ class Simulation {
 #endif
     for (int b = 0; b < nb; ++b) {
       auto& bs = systems_[b];
+      if (bs.rigid) {
+        if (static_) {
+          failed = true;
+          continue;
+        }
+        solve_rigid(bs);
+        bs.needs_refresh = false;
+        bs.assembled = false;
+        continue;
+      }
       const bool reuse = opt_.refresh_interval > 1 && !static_;
       Mat3 Q = Mat3::Identity();
       if (reuse) Q = body_rotation(bs);
@@ -623,10 +665,55 @@ class Simulation {
     return refreshed;
   }
 
+  Vec3 mass_centre(const detail::BodySystem& bs) const {
+    Vec3 c = Vec3::Zero();
+    double m = 0;
+    for (int n : bs.nodes) {
+      c += mass_[6 * n] * x_[n];
+      m += mass_[6 * n];
+    }
+    return c / m;
+  }
+
+  // Newton step of a rigid body: nodal increments dx_n = dc + dtheta x r_n, rotations dtheta; the
+  // nodal residual and effective mass reduced to 6 x 6 (T^T r, T^T M* T), solved, and the nodes
+  // placed exactly on the rigid motion from the start of the step (finite rotation, no drift).
+  void solve_rigid(detail::BodySystem& bs) {
+    const double dt = opt_.dt;
+    const double mf = (1 - coef_.alpha_m) / (coef_.beta * dt * dt) +
+                      (1 - coef_.alpha_f) * coef_.gamma / (coef_.beta * dt) * opt_.mass_damping;
+    const Vec3 c = mass_centre(bs);
+    Eigen::Matrix<double, 6, 6> A = Eigen::Matrix<double, 6, 6>::Zero();
+    Vec6 R6 = Vec6::Zero();
+    for (int n : bs.nodes) {
+      const Vec3 r = x_[n] - c;
+      const Mat3 S = detail::skew(r);  // dtheta x r = -S dtheta
+      const double m = mf * mass_[6 * n], J = mf * mass_[6 * n + 3];
+      A.block<3, 3>(0, 0) += m * Mat3::Identity();
+      A.block<3, 3>(0, 3) -= m * S;
+      A.block<3, 3>(3, 0) += m * S;
+      A.block<3, 3>(3, 3) += -m * S * S + J * Mat3::Identity();
+      const Vec3 rf = r_.segment<3>(6 * n), rm = r_.segment<3>(6 * n + 3);
+      R6.head<3>() += rf;
+      R6.tail<3>() += S * rf + rm;
+    }
+    const Vec6 dq = A.ldlt().solve(R6);
+    bs.rigid_dc += dq.head<3>();
+    bs.rigid_Q = detail::rotation_exp(dq.tail<3>()) * bs.rigid_Q;
+    const Vec3 rot = detail::rotation_log(bs.rigid_Q);
+    for (int n : bs.nodes) {
+      const Vec3 x0 = model_.node(n).X + u0_[n];
+      Du_.segment<3>(6 * n) = bs.rigid_c0 + bs.rigid_dc + bs.rigid_Q * (x0 - bs.rigid_c0) - x0;
+      Du_.segment<3>(6 * n + 3) = rot;
+    }
+  }
+
   double dof_value(int n, int dof) const {
     return dof < 3 ? u_[n][dof] : detail::rotation_log(R_[n])[dof - 3];
   }
-  double spring_scale() const { return static_ ? load_factor_ : (load_scale_ ? load_scale_(t_) : 1.0); }
+  // Scale of the spring targets, set with the external forces: load_scale(t_{n+1}) while a step solves
+  // for t_{n+1} (load_scale(t_n) lagged the targets one step behind the loads), load factor in statics.
+  double spring_scale() const { return spring_scale_; }
 
   Mat3 body_rotation(const detail::BodySystem& bs) const {
     Vec3 xc = Vec3::Zero();
@@ -640,13 +727,16 @@ class Simulation {
   int shift_integration_points() {
     int shifted = 0;
     if constexpr (requires(State s) { s.hinge; s.plastic_increment; }) {
+      int skip = -1;  // a partner whose point was just moved: its d_ and new s are not in equilibrium yet
       for (int e = 0; e < model_.num_elements(); ++e) {
+        if (e == skip) continue;  // checked at the next step, from forces at its new point
         const int p = model_.elements()[e].partner;
         State* partner = p >= 0 ? &committed_[p] : nullptr;
         const ElementProps* pp = p >= 0 ? &props_[p] : nullptr;
         if (Element::shift_integration_point(props_[e], committed_[e], d_[e], partner, pp)) {
           ++shifted;
           systems_[model_.elements()[e].body].needs_refresh = true;
+          if (p > e) skip = p;
         }
       }
       if (shifted) {
@@ -676,7 +766,7 @@ class Simulation {
   Contact contact_;
   std::function<Vec3(double)> table_acc_;
   std::function<double(double)> load_scale_;
-  double t_ = 0, load_factor_ = 1;
+  double t_ = 0, load_factor_ = 1, spring_scale_ = 1;
   long steps_ = 0;
   bool started_ = false, static_ = false;
 

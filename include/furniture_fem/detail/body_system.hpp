@@ -78,6 +78,9 @@ struct BodySystem {
   long steps_since_refresh = 1 << 30;
   bool needs_refresh = true;
   bool assembled = false;            // K holds the tangent at the current configuration
+  bool rigid = false;                // solved as a rigid body (6 DOF)
+  Vec3 rigid_c0 = Vec3::Zero(), rigid_dc = Vec3::Zero();  // centre at the step's start, its increment
+  Mat3 rigid_Q = Mat3::Identity();   // rotation since the step's start
   int ndof() const { return static_cast<int>(nodes.size()) * 6; }
 };
 
