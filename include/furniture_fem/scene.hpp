@@ -166,7 +166,7 @@ struct SceneSpec {
   GroundMotionSpec ground_motion;
   ContactSpec contact;
   IntegratorSpec integrator;
-  SolverKind solver = SolverKind::cg;
+  SolverKind solver = SolverKind::direct;
   double duration = 10.0;  // s
   double dt = 1e-3;        // s (the paper's 1 ms)
   OutputSpec outputs;
@@ -957,7 +957,7 @@ inline SceneSpec configuration(int k, const std::string& records_dir = "../share
   s.dt = 1e-3;
   s.contact.law = ContactLawKind::paper_anisotropic;
   s.integrator = {IntegratorKind::paper_newmark, 0.5, false};
-  s.solver = SolverKind::cg;
+  s.solver = SolverKind::direct;
   s.outputs.folder = "out/configuration_" + std::to_string(k);
   s.outputs.vtu_every = 100;
   const auto marker = [](const std::string& item, const std::string& name) {

@@ -1,0 +1,590 @@
+#pragma once
+// furniture_fem/scene_runner.hpp: run a scene (scene.hpp) end to end and write its results folder.
+//
+//   RunSummary run_scene(const SceneSpec&, const RunOptions&)
+//
+// Builds the model, loads and processes the ground motion, composes the solver for the scene's
+// contact law and linear solver (compile-time policies, picked here from the scene's runtime choice),
+// steps it with a progress bar, and writes: marker displacement histories, contact force histories per
+// pair of bodies, sectional force histories, the energy ledger (CSV); the final state of every item and
+// a run summary (JSON); a VTU/PVD time series; PNG figures (marker histories, the room's final state,
+// the requested sectional forces). A stop request (Ctrl-C) or a diverging step ends the run early with
+// everything written so far readable and the reason in the summary.
+#include <Eigen/Core>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "csv.hpp"
+#include "excitation.hpp"
+#include "plot.hpp"
+#include "room_contact.hpp"
+#include "scene.hpp"
+#include "simulation.hpp"
+#include "vtk.hpp"
+
+namespace furniture_fem {
+
+inline constexpr const char* version_string = "0.1.0";
+
+struct RunOptions {
+  std::string out_dir;                        // empty: the scene's outputs.folder
+  bool progress = true;                       // progress bar on stderr
+  std::optional<double> duration;             // overrides the scene's duration
+  int output_every = 10;                      // history rows every N steps (10 ms at dt = 1 ms)
+  const std::atomic<bool>* stop = nullptr;    // set by a signal handler to stop cleanly
+  std::optional<bool> figures;                // overrides outputs.figures
+};
+
+struct ItemFinalState {
+  std::string name;
+  std::string state;          // standing, slid, tilted, overturned, resting_on_item
+  double slide = 0;           // horizontal displacement of the centre of gravity (m)
+  double tilt_deg = 0;        // angle of the item's vertical axis from the vertical
+  double max_tilt_deg = 0;    // during the run
+  double lift = 0;            // height of the lowest node above the floor contact onset (m)
+  std::string resting_on;     // the item it leans or rests on, if any
+  Vec3 cog_displacement = Vec3::Zero();
+};
+
+struct RunSummary {
+  std::string status = "completed";  // completed, stopped, diverged
+  std::string diagnosis;
+  double t_end = 0, duration = 0;
+  long steps = 0;
+  double wall_seconds = 0;
+  double energy_imbalance = 0;        // |imbalance| / scale of the ledger at the end
+  double max_energy_imbalance = 0;    // the largest during the run
+  long factorizations = 0;
+  int elements = 0, nodes = 0, bodies = 0;
+  std::vector<ItemFinalState> items;
+  std::string out_dir;
+};
+
+namespace detail {
+
+inline Record scene_record(const SceneSpec& s, const std::string& file, const char* axis) {
+  const auto& g = s.ground_motion;
+  const std::string path = s.resolve(file);
+  if (path.empty())
+    throw InputError(s.source, 0, std::string("ground_motion.file_") + axis, "no record file given for this axis");
+  if (!std::filesystem::exists(path))
+    throw InputError(s.source, 0, std::string("ground_motion.file_") + axis, "record file not found: " + path);
+  ReadOptions ro;
+  if (g.units) ro.unit = *g.units == AccelerationUnits::g ? Unit::g : *g.units == AccelerationUnits::gal ? Unit::gal : Unit::m_s2;
+  else if (g.format == RecordFormat::columns) ro.unit = Unit::gal;
+  if (g.dt) ro.dt = *g.dt;
+  Format f = Format::automatic;
+  switch (g.format) {
+    case RecordFormat::at2: f = Format::peer_at2; break;
+    case RecordFormat::knet: f = Format::knet; break;
+    case RecordFormat::jma_csv: f = Format::jma_csv; break;
+    case RecordFormat::columns: f = Format::columns; break;
+  }
+  return read_record(path, f, ro);
+}
+
+// Window, low-pass and scale one component; the run's time 0 is the window's start.
+inline Record process_record(Record r, const GroundMotionSpec& g) {
+  if (g.lowpass_hz > 0 && g.lowpass_hz < 0.5 / r.dt) r = low_pass(r, g.lowpass_hz);
+  const double t0 = std::max(g.window_start, r.t0);
+  const double t1 = g.window_end ? std::min(*g.window_end, r.t_end()) : r.t_end();
+  if (t0 > 0 || t1 < r.t_end()) r = window(r, t0, t1, 0.0);
+  r.t0 = 0;
+  return r.scaled(g.level);
+}
+
+}  // namespace detail
+
+// The shake table's acceleration for a scene (m/s^2, table axes), as the scene asks for it.
+inline TableMotion scene_table_motion(const SceneSpec& s) {
+  const auto& g = s.ground_motion;
+  const bool three_d = g.dimensions == MotionDimensions::three_d;
+  if (g.source == MotionSource::synthetic) {
+    TableMotion m = default_table_motion(g.seed);
+    // Scale so the X component's peak is the requested PGA; Y and Z keep their ratios to X.
+    const double k = g.pga / std::max(m.x.peak(), 1e-12);
+    m = m.scaled(k * g.level);
+    if (!three_d) m.has_y = m.has_z = false;
+    return m;
+  }
+  if (g.format == RecordFormat::jma_csv) {
+    ReadOptions ro;
+    const auto c = read_jma_csv(s.resolve(g.file_x));
+    if (!three_d) return TableMotion::one_d(detail::process_record(c[0], g));
+    return TableMotion::three_d(detail::process_record(c[0], g), detail::process_record(c[1], g),
+                                detail::process_record(c[2], g));
+  }
+  Record x = detail::process_record(detail::scene_record(s, g.file_x, "x"), g);
+  if (!three_d) return TableMotion::one_d(std::move(x));
+  Record y = detail::process_record(detail::scene_record(s, g.file_y, "y"), g);
+  Record z = detail::process_record(detail::scene_record(s, g.file_z, "z"), g);
+  return TableMotion::three_d(std::move(x), std::move(y), std::move(z));
+}
+
+// Contact parameters of each body from its item's (Table 4 or rule) values and the scene's overrides.
+inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Model& model,
+                                                    const std::vector<ItemInfo>& items) {
+  std::vector<BodyContact> out(model.num_bodies());
+  const auto apply = [&](ContactParams& p, const ContactOverrides& o) {
+    if (o.alpha_kgf) p.alpha = *o.alpha_kgf * newtons_per_kgf;
+    if (o.dc_kgf) p.Dc = *o.dc_kgf * newtons_per_kgf;
+    if (o.q) p.q = *o.q;
+    if (o.mu) p.mu = p.mu_long = p.mu_short = *o.mu;
+    if (o.mu_long) p.mu_long = *o.mu_long;
+    if (o.mu_short) p.mu_short = *o.mu_short;
+  };
+  for (const auto& it : items) {
+    BodyContact bc;
+    const ItemContact& c = it.contact;
+    ContactParams base;
+    base.alpha = c.alpha;
+    base.Dc = c.Dc;
+    base.q = c.q;
+    base.v_reg = s.contact.velocity_regularisation;
+    // Linear and Hunt-Crossley springs get the paper penalty's stiffness at onset: alpha / L per
+    // contact with L = 25 mm (half the 50 mm member width); the tangential spring of the stick-slip
+    // law is as stiff; critical-ish damping for a node of ~0.1 kg.
+    base.k_lin = c.alpha / 0.025;
+    base.c_lin = 2.0 * std::sqrt(base.k_lin * 0.1);
+    base.k_hc = base.k_lin / std::sqrt(0.025);
+    base.hc_damping = 0.5;
+    base.k_t = base.k_lin;
+    bc.floor = base;
+    bc.floor.mu = c.mu_floor_long;
+    bc.floor.mu_long = c.mu_floor_long;
+    bc.floor.mu_short = c.mu_floor_short;
+    bc.wall = base;
+    bc.wall.mu = bc.wall.mu_long = bc.wall.mu_short = c.mu_wall;
+    bc.item = base;
+    bc.item.mu = bc.item.mu_long = bc.item.mu_short = c.mu_item;
+    apply(bc.floor, s.contact.floor);
+    apply(bc.wall, s.contact.wall);
+    apply(bc.item, s.contact.item);
+    if (s.contact.floor.stiffness) bc.floor.k_lin = bc.floor.k_t = *s.contact.floor.stiffness;
+    if (s.contact.floor.damping) bc.floor.c_lin = *s.contact.floor.damping;
+    bc.long_axis_node_a = it.long_axis_nodes[0];
+    bc.long_axis_node_b = it.long_axis_nodes[1];
+    bc.caster_nodes = it.caster_nodes;
+    out.at(it.body) = bc;
+  }
+  return out;
+}
+
+inline std::vector<RigidPlane> scene_planes(const SceneSpec& s) {
+  std::vector<RigidPlane> planes;
+  RigidPlane floor;
+  floor.point = Vec3(0, 0, s.table.floor_z);
+  floor.normal = Vec3::UnitZ();
+  planes.push_back(floor);
+  for (const auto& w : s.walls) {
+    RigidPlane p;
+    p.normal = w.normal.normalized();
+    p.point = w.point + Vec3(0, 0, 0.5 * w.height);
+    p.axis_u = Vec3::UnitZ().cross(p.normal).normalized();
+    p.axis_v = Vec3::UnitZ();
+    p.half_u = 0.5 * w.width;
+    p.half_v = 0.5 * w.height;
+    p.is_wall = true;
+    planes.push_back(p);
+  }
+  return planes;
+}
+
+namespace detail {
+
+// Best rigid rotation of a body from its initial to its current nodes (for tilt and final state).
+template <class Sim>
+Mat3 body_rotation_of(const Sim& sim, const Model& model, int body, Vec3* centroid_shift = nullptr) {
+  const auto& nodes = model.body(body).nodes;
+  Vec3 Xc = Vec3::Zero(), xc = Vec3::Zero();
+  for (int n : nodes) {
+    Xc += model.node(n).X;
+    xc += sim.position(n);
+  }
+  Xc /= double(nodes.size());
+  xc /= double(nodes.size());
+  if (centroid_shift) *centroid_shift = xc - Xc;
+  return best_rotation(
+      static_cast<int>(nodes.size()),
+      [&](int i) { return std::pair<Vec3, Vec3>(model.node(nodes[i]).X, sim.position(nodes[i])); }, Xc, xc);
+}
+
+inline double tilt_of(const Mat3& Q) {
+  return std::acos(std::clamp((Q * Vec3::UnitZ()).z(), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+}
+
+inline void write_text(const std::string& path, const std::string& text) {
+  std::ofstream f(path);
+  if (!f) throw std::runtime_error("cannot write " + path);
+  f << text;
+}
+
+// Geometry of the whole model for the VTU files and the 3-D figure.
+template <class Sim>
+LineMesh line_mesh(const Sim& sim, const Model& model, bool forces) {
+  LineMesh mesh;
+  mesh.points.reserve(model.num_nodes());
+  for (int n = 0; n < model.num_nodes(); ++n) mesh.points.push_back(sim.position(n));
+  std::vector<Vec3> disp(model.num_nodes());
+  for (int n = 0; n < model.num_nodes(); ++n) disp[n] = sim.displacement(n);
+  std::vector<double> body(model.num_elements()), axial(model.num_elements()), shear(model.num_elements()),
+      moment(model.num_elements());
+  for (int e = 0; e < model.num_elements(); ++e) {
+    mesh.lines.push_back({model.elements()[e].n1, model.elements()[e].n2});
+    body[e] = model.elements()[e].body;
+    if (forces) {
+      const auto f = sim.section_forces(e);
+      axial[e] = f.N;
+      shear[e] = std::hypot(f.Qy, f.Qz);
+      moment[e] = std::hypot(f.My, f.Mz);
+    }
+  }
+  mesh.add_point_vector("displacement", disp);
+  mesh.add_cell_scalar("body", body);
+  if (forces) {
+    mesh.add_cell_scalar("N", axial);
+    mesh.add_cell_scalar("Q", shear);
+    mesh.add_cell_scalar("M", moment);
+  }
+  return mesh;
+}
+
+struct Progress {
+  bool on = true;
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  double last_print = -1;
+  void update(double t, double t_end, bool force = false) {
+    if (!on) return;
+    const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!force && el - last_print < 0.25) return;
+    last_print = el;
+    const double frac = t_end > 0 ? std::clamp(t / t_end, 0.0, 1.0) : 1.0;
+    const int width = 30, filled = static_cast<int>(frac * width);
+    const double eta = frac > 1e-9 ? el * (1 - frac) / frac : 0;
+    std::fprintf(stderr, "\r[%.*s%*s] %5.1f%%  t = %6.3f / %.3f s  elapsed %6.1f s  ETA %6.1f s ", filled,
+                 "##############################", width - filled, "", 100 * frac, t, t_end, el, eta);
+    if (force) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+  }
+};
+
+template <class Law, class Solver>
+RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt) {
+  using Sim = Simulation<AsiGaussTimoshenko, RuntimeIntegrator, Solver, RoomContact<Law>>;
+  namespace fs = std::filesystem;
+  RunSummary sum;
+  const auto t_start = std::chrono::steady_clock::now();
+  const std::string out = opt.out_dir.empty() ? spec.outputs.folder : opt.out_dir;
+  fs::create_directories(out);
+  sum.out_dir = out;
+  const bool figures = opt.figures.value_or(spec.outputs.figures);
+
+  // Model, items, contact and excitation.
+  Model model;
+  const std::vector<ItemInfo> items = build_scene(spec, model);
+  sum.elements = model.num_elements();
+  sum.nodes = model.num_nodes();
+  sum.bodies = model.num_bodies();
+  const TableMotion motion = scene_table_motion(spec);
+  RoomContact<Law> contact(model, scene_body_contacts(spec, model, items), scene_planes(spec));
+  for (const auto& ob : spec.obstacles) {
+    MeshObstacle m = MeshObstacle::from_file(spec.resolve(ob.file));  // placement: see ObstacleSpec
+    contact.add_obstacle(std::move(m));
+  }
+
+  RuntimeIntegrator integ;
+  switch (spec.integrator.scheme) {
+    case IntegratorKind::paper_newmark: integ = RuntimeIntegrator::from(Newmark::paper()); break;
+    case IntegratorKind::average_acceleration: integ = RuntimeIntegrator::from(Newmark::average_acceleration()); break;
+    case IntegratorKind::generalized_alpha: integ = RuntimeIntegrator::from(GeneralizedAlpha{spec.integrator.rho_inf}); break;
+  }
+  integ.mode = spec.integrator.iterate_to_equilibrium ? EquilibriumMode::iterate : EquilibriumMode::carry_over;
+  SimulationOptions so;
+  so.dt = spec.dt;
+  so.refresh_interval = 20;
+  so.gravity = Vec3(0, 0, -9.80665);
+  Sim sim(model, integ, so, std::move(contact));
+  sim.set_table_acceleration([&motion](double t) { return motion.at(t); });
+
+  // Output requests resolved to nodes and elements (errors name the request).
+  struct MarkerOut {
+    std::string name;
+    int node;
+  };
+  std::vector<MarkerOut> markers;
+  const auto item_by_name = [&](const std::string& name, const std::string& key) -> const ItemInfo& {
+    for (const auto& it : items)
+      if (it.name == name) return it;
+    throw InputError(spec.source, 0, key, "no item named '" + name + "'");
+  };
+  for (size_t i = 0; i < spec.outputs.markers.size(); ++i) {
+    const auto& m = spec.outputs.markers[i];
+    const std::string key = "outputs.markers[" + std::to_string(i) + "]";
+    const ItemInfo& it = item_by_name(m.item, key + ".item");
+    int node = -1;
+    if (m.point) node = nearest_node(model, it.body, it.to_world(*m.point));
+    else if (const Marker* mk = it.marker(m.marker)) node = mk->node;
+    else throw InputError(spec.source, 0, key + ".marker", "item '" + m.item + "' has no marker '" + m.marker + "'");
+    markers.push_back({m.name.empty() ? m.item + "." + m.marker : m.name, node});
+  }
+  struct SectionOut {
+    std::string name;
+    int element;
+  };
+  std::vector<SectionOut> sections;
+  for (size_t i = 0; i < spec.outputs.sectional_forces.size(); ++i) {
+    const auto& r = spec.outputs.sectional_forces[i];
+    const std::string key = "outputs.sectional_forces[" + std::to_string(i) + "]";
+    const ItemInfo& it = item_by_name(r.item, key + ".item");
+    const int m = find_member(model, it.body, r.member);
+    if (m < 0) throw InputError(spec.source, 0, key + ".member", "item '" + r.item + "' has no member '" + r.member + "'");
+    if (r.element < 0 || r.element >= model.member(m).element_count)
+      throw InputError(spec.source, 0, key + ".element",
+                       "member '" + r.member + "' has " + std::to_string(model.member(m).element_count) +
+                           " elements (got " + std::to_string(r.element) + ")");
+    sections.push_back({r.item + ":" + r.member + "#" + std::to_string(r.element), model.member(m).first_element + r.element});
+  }
+
+  // History files.
+  std::vector<std::string> mcols{"t"};
+  for (const auto& m : markers)
+    for (const char* c : {"_x", "_y", "_z"}) mcols.push_back(m.name + c);
+  CsvWriter marker_csv(out + "/markers.csv", mcols);
+  std::vector<std::string> scols{"t"};
+  for (const auto& s : sections)
+    for (const char* c : {"_N", "_Qy", "_Qz", "_Mx", "_My", "_Mz"}) scols.push_back(s.name + c);
+  CsvWriter section_csv(out + "/sectional_forces.csv", scols);
+  CsvWriter energy_csv(out + "/energy.csv", {"t", "kinetic", "strain", "gravity_potential", "external_work",
+                                             "contact_work", "damping_work", "plastic_work", "imbalance"});
+  CsvWriter contact_csv(out + "/contact_forces.csv", {"t", "body_a", "body_b", "fx", "fy", "fz"});
+  std::vector<std::string> body_names(model.num_bodies());
+  for (int b = 0; b < model.num_bodies(); ++b) body_names[b] = model.body(b).name;
+  PvdWriter pvd(out + "/room.pvd");
+  if (spec.outputs.vtu_every > 0) fs::create_directories(out + "/vtu");
+
+  std::vector<double> th;
+  std::vector<std::vector<double>> mh(markers.size() * 3), sh(sections.size() * 2);
+  std::vector<double> max_tilt(model.num_bodies(), 0.0);
+
+  auto record = [&](const Sim& s) {
+    const double t = s.time();
+    th.push_back(t);
+    std::vector<double> row{t};
+    for (size_t i = 0; i < markers.size(); ++i) {
+      const Vec3 d = s.displacement(markers[i].node);
+      for (int c = 0; c < 3; ++c) {
+        row.push_back(d[c]);
+        mh[3 * i + c].push_back(d[c]);
+      }
+    }
+    marker_csv.row(row);
+    row.assign(1, t);
+    for (size_t i = 0; i < sections.size(); ++i) {
+      const auto f = s.section_forces(sections[i].element);
+      for (double v : {f.N, f.Qy, f.Qz, f.Mx, f.My, f.Mz}) row.push_back(v);
+      sh[2 * i].push_back(f.Qy);
+      sh[2 * i + 1].push_back(f.Qz);
+    }
+    section_csv.row(row);
+    const auto E = s.energy();
+    energy_csv.row({t, E.kinetic, E.strain, E.gravity_potential, E.external_work, E.contact_work, E.damping_work,
+                    E.plastic_work, E.imbalance()});
+    if (s.steps() > 0) sum.max_energy_imbalance = std::max(sum.max_energy_imbalance, std::abs(E.imbalance()) / E.scale());
+    for (const auto& pf : s.contact_model().pair_forces())
+      contact_csv.row({t, double(pf.body_a), double(pf.body_b), pf.force_on_a.x(), pf.force_on_a.y(), pf.force_on_a.z()});
+    for (int b = 0; b < model.num_bodies(); ++b) max_tilt[b] = std::max(max_tilt[b], tilt_of(body_rotation_of(s, model, b)));
+  };
+  auto write_vtu_frame = [&](const Sim& s) {
+    const std::string name = "vtu/room_" + std::to_string(s.steps()) + ".vtu";
+    write_vtu(out + "/" + name, line_mesh(s, model, true));
+    pvd.add(s.time(), name);
+    pvd.write();
+  };
+
+  const double t_end = opt.duration.value_or(spec.duration);
+  sum.duration = t_end;
+  Progress progress;
+  progress.on = opt.progress;
+  record(sim);
+  if (spec.outputs.vtu_every > 0) write_vtu_frame(sim);
+  try {
+    while (sim.time() < t_end - 0.5 * spec.dt) {
+      if (opt.stop && opt.stop->load()) {
+        sum.status = "stopped";
+        sum.diagnosis = "stopped by the user (interrupt) at t = " + std::to_string(sim.time()) + " s";
+        break;
+      }
+      sim.step();
+      if (sim.steps() % opt.output_every == 0) record(sim);
+      if (spec.outputs.vtu_every > 0 && sim.steps() % spec.outputs.vtu_every == 0) write_vtu_frame(sim);
+      progress.update(sim.time(), t_end);
+    }
+  } catch (const SimulationError& e) {
+    sum.status = "diverged";
+    sum.diagnosis = e.what();
+  }
+  progress.update(sim.time(), t_end, true);
+  marker_csv.flush();
+  section_csv.flush();
+  energy_csv.flush();
+  contact_csv.flush();
+
+  // Final state of every item.
+  const auto& final_pairs = sim.contact_model().pair_forces();
+  for (const auto& it : items) {
+    ItemFinalState st;
+    st.name = it.name;
+    Vec3 shift;
+    const Mat3 Q = body_rotation_of(sim, model, it.body, &shift);
+    const Vec3 cog0 = model.body_centre_of_gravity(it.body);
+    Vec3 cog = Vec3::Zero();
+    double m = 0;
+    for (int e : model.body(it.body).elements) {
+      const double me = model.elements()[e].line_mass * model.element_length(e);
+      cog += me * 0.5 * (sim.position(model.elements()[e].n1) + sim.position(model.elements()[e].n2));
+      m += me;
+    }
+    cog /= m;
+    st.cog_displacement = cog - cog0;
+    st.slide = std::hypot(st.cog_displacement.x(), st.cog_displacement.y());
+    st.tilt_deg = tilt_of(Q);
+    st.max_tilt_deg = max_tilt[it.body];
+    double low = 1e9, low0 = 1e9;
+    for (int n : model.body(it.body).nodes) {
+      low = std::min(low, sim.position(n).z());
+      low0 = std::min(low0, model.node(n).X.z());
+    }
+    st.lift = low - low0;
+    for (const auto& pf : final_pairs) {
+      const int other = pf.body_a == it.body ? pf.body_b : pf.body_b == it.body ? pf.body_a : -100;
+      if (other >= 0 && pf.force_on_a.norm() > 1.0) st.resting_on = body_names[other];
+    }
+    if (st.tilt_deg > 60) st.state = "overturned";
+    else if (!st.resting_on.empty() && (st.tilt_deg > 5 || st.lift > 0.03)) st.state = "resting_on_item";
+    else if (st.tilt_deg > 5) st.state = "tilted";
+    else if (st.slide > 0.01) st.state = "slid";
+    else st.state = "standing";
+    sum.items.push_back(st);
+  }
+  const auto E = sim.energy();
+  sum.energy_imbalance = std::abs(E.imbalance()) / E.scale();
+  sum.t_end = sim.time();
+  sum.steps = sim.steps();
+  sum.factorizations = sim.factorizations();
+  sum.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+
+  nlohmann::json final_state = nlohmann::json::array();
+  for (const auto& s : sum.items)
+    final_state.push_back({{"item", s.name},
+                           {"state", s.state},
+                           {"slide_m", s.slide},
+                           {"tilt_deg", s.tilt_deg},
+                           {"max_tilt_deg", s.max_tilt_deg},
+                           {"lift_m", s.lift},
+                           {"resting_on", s.resting_on},
+                           {"cog_displacement_m", {s.cog_displacement.x(), s.cog_displacement.y(), s.cog_displacement.z()}}});
+  write_text(out + "/final_state.json", final_state.dump(2) + "\n");
+  nlohmann::json summary = {
+      {"furniture_fem_version", version_string},
+      {"scene", to_json(spec)},
+      {"status", sum.status},
+      {"diagnosis", sum.diagnosis},
+      {"t_end_s", sum.t_end},
+      {"duration_s", sum.duration},
+      {"steps", sum.steps},
+      {"dt_s", spec.dt},
+      {"wall_seconds", sum.wall_seconds},
+      {"elements", sum.elements},
+      {"nodes", sum.nodes},
+      {"bodies", sum.bodies},
+      {"element_policy", std::string(AsiGaussTimoshenko::name)},
+      {"integrator", integ.name()},
+      {"linear_solver", std::string(Solver::name)},
+      {"factorizations", sum.factorizations},
+      {"energy_imbalance_relative", sum.energy_imbalance},
+      {"max_energy_imbalance_relative", sum.max_energy_imbalance},
+      {"ground_motion_peak_m_s2", {motion.x.peak(), motion.has_y ? motion.y.peak() : 0.0, motion.has_z ? motion.z.peak() : 0.0}},
+      {"final_state", final_state},
+      {"eigen_version", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
+                            std::to_string(EIGEN_MINOR_VERSION)}};
+  write_text(out + "/summary.json", summary.dump(2) + "\n");
+
+  if (figures) {
+    // Marker histories, as the paper's Figures 16-18: one figure per marker, X / Y / Z panels.
+    for (size_t i = 0; i < markers.size(); ++i) {
+      LinePlot p;
+      p.title("Displacement relative to the table: " + markers[i].name).xlabel("time (s)").panels(3);
+      const char* axis[3] = {"X (m)", "Y (m)", "Z (m)"};
+      for (int c = 0; c < 3; ++c) {
+        p.ylabel(axis[c], c);
+        p.add(th, mh[3 * i + c], markers[i].name, c);
+      }
+      std::string file = markers[i].name;
+      for (char& ch : file)
+        if (ch == '/' || ch == ' ' || ch == ':') ch = '_';
+      p.save_png(out + "/marker_" + file + ".png", 1000, 750);
+    }
+    for (size_t i = 0; i < sections.size(); ++i) {
+      LinePlot p;
+      p.title("Shear force: " + sections[i].name).xlabel("time (s)").panels(2);
+      p.ylabel("Qy (N)", 0).ylabel("Qz (N)", 1);
+      p.add(th, sh[2 * i], "Qy", 0);
+      p.add(th, sh[2 * i + 1], "Qz", 1);
+      p.save_png(out + "/shear_" + std::to_string(i) + ".png", 1000, 600);
+    }
+    Wireframe3D w;
+    w.title(spec.name + ": final state at t = " + std::to_string(sim.time()).substr(0, 5) + " s").camera(-60, 25);
+    std::vector<Segment3> segs;
+    std::vector<RGB> cols;
+    for (int e = 0; e < model.num_elements(); ++e) {
+      segs.push_back({sim.position(model.elements()[e].n1), sim.position(model.elements()[e].n2)});
+      cols.push_back(palette_color(model.elements()[e].body));
+    }
+    w.add_segments(segs, cols);
+    w.floor_grid(-0.5 * spec.table.size_x, 0.5 * spec.table.size_x, -0.5 * spec.table.size_y,
+                 0.5 * spec.table.size_y, spec.table.floor_z, 0.5);
+    for (const auto& wall : spec.walls) {
+      const Vec3 u = Vec3::UnitZ().cross(wall.normal).normalized() * 0.5 * wall.width;
+      const Vec3 h(0, 0, wall.height);
+      w.add_quad({wall.point - u, wall.point + u, wall.point + u + h, wall.point - u + h}, RGB{150, 150, 150}, 0.15);
+    }
+    for (const auto& it : items) w.legend(it.name, palette_color(it.body));
+    w.save_png(out + "/room_final.png", 1000, 800);
+  }
+  return sum;
+}
+
+}  // namespace detail
+
+// Runs a scene; the contact law and the linear solver are compile-time policies, chosen here from
+// the scene's runtime choice (each combination is one instantiation of the solver).
+inline RunSummary run_scene(const SceneSpec& spec, const RunOptions& opt = {}) {
+  validate(spec);
+  const bool direct = spec.solver == SolverKind::direct;
+  switch (spec.contact.law) {
+    case ContactLawKind::paper:
+      return direct ? detail::run_composed<PaperLaw, DirectLdltSolver>(spec, opt)
+                    : detail::run_composed<PaperLaw, ConjugateGradientSolver>(spec, opt);
+    case ContactLawKind::paper_anisotropic:
+      return direct ? detail::run_composed<PaperAnisotropicFloorLaw, DirectLdltSolver>(spec, opt)
+                    : detail::run_composed<PaperAnisotropicFloorLaw, ConjugateGradientSolver>(spec, opt);
+    case ContactLawKind::spring_dashpot:
+      return detail::run_composed<SpringDashpotLaw, DirectLdltSolver>(spec, opt);
+    case ContactLawKind::hunt_crossley:
+      return detail::run_composed<HuntCrossleyLaw, DirectLdltSolver>(spec, opt);
+    case ContactLawKind::stick_slip:
+      return detail::run_composed<StickSlipLaw, DirectLdltSolver>(spec, opt);
+  }
+  throw InputError(spec.source, 0, "contact.law", "unknown contact law");
+}
+
+}  // namespace furniture_fem
