@@ -129,9 +129,12 @@ struct ShiftedIntegrationTimoshenko {
   struct State {
     double s = 0;              // integration point
     int hinge = 0;             // 0 elastic, -1 / +1 plastic hinge at that end
-    Vec6 eps_p = Vec6::Zero(); // plastic generalised strains (N, Mx, My, Mz components only)
+    Vec6 eps_p = Vec6::Zero(); // plastic generalised strains (N, Mx, My, Mz), plus the initial
+                               // strains that keep the forces continuous across point shifts
     double plastic_increment = 0;  // plastic multiplier of the last trial (0 when elastic)
     double plastic_work = 0;
+    bool moved = false;        // the point moved (ASI rule) from s_from; rebased at the next response
+    double s_from = 0;
   };
 
   static State initial_state(const ElementProps& p) {
@@ -144,7 +147,30 @@ struct ShiftedIntegrationTimoshenko {
     return detail::timoshenko_B(p.L0, s) * d;
   }
 
-  static void response(const ElementProps& p, const State& c, const Vec12& d, Vec12& f, Mat12& k, State& t) {
+  // A moved point keeps the element's sectional forces: those at the new stress point are the old
+  // state's carried along the element (N, Q, Mx constant, moments linear; detail::forces_at), and the
+  // difference to the elastic strains at the new point becomes initial strain in eps_p. The nodal
+  // forces are then continuous across a shift, as in the incremental formulation of the ASI papers;
+  // re-evaluating the total strains at the new point instead turns the hinge's rotation into a
+  // spurious shear (a jump of the reaction on unloading, and chattering hinges in dynamics).
+  static State rebased(const ElementProps& p, const State& c, const Vec12& d) {
+    State r = c;
+    r.moved = false;
+    const Vec6 eps_old = generalized_strain(p, c.s_from, d), eps_new = generalized_strain(p, c.s, d);
+    Vec6 sig_old;
+    for (int i = 0; i < 6; ++i) sig_old[i] = p.D[i] * (eps_old[i] - c.eps_p[i]);
+    const Vec6 sig_new = detail::forces_at(sig_old, -c.s_from, -c.s, p.L0);
+    for (int i = 0; i < 6; ++i) r.eps_p[i] = eps_new[i] - sig_new[i] / p.D[i];
+    return r;
+  }
+  static void move_point(State& st, double s_new) {
+    if (!st.moved) st.s_from = st.s;
+    st.moved = true;
+    st.s = s_new;
+  }
+
+  static void response(const ElementProps& p, const State& c0, const Vec12& d, Vec12& f, Mat12& k, State& t) {
+    const State c = c0.moved ? rebased(p, c0, d) : c0;
     t = c;
     const auto B = detail::timoshenko_B(p.L0, c.s);
     const Vec6 eps = B * d;
@@ -158,7 +184,8 @@ struct ShiftedIntegrationTimoshenko {
     k = p.L0 * B.transpose() * Dt * B;
   }
 
-  static SectionForces section_forces(const ElementProps& p, const State& c, const Vec12& d) {
+  static SectionForces section_forces(const ElementProps& p, const State& c0, const Vec12& d) {
+    const State c = c0.moved ? rebased(p, c0, d) : c0;
     const Vec6 eps = generalized_strain(p, c.s, d);
     Vec6 sig;
     for (int i = 0; i < 6; ++i) sig[i] = p.D[i] * (eps[i] - c.eps_p[i]);
@@ -197,9 +224,13 @@ struct ShiftedIntegrationTimoshenko {
       xi[j] = Dk[j] / den;
     }
     const double nXn = (n.array() * xi.array() * n.array()).sum();
+    // The tangent keeps 1e-6 of the stiffness along the flow direction: a node whose elements are all
+    // hinged at it (both sides of a mid-span hinge) would otherwise have a zero pivot in statics. The
+    // forces are the perfectly plastic ones, so converged results do not depend on it.
+    constexpr double keep = 1e-6;
     for (int a = 0; a < 4; ++a)
       for (int b = 0; b < 4; ++b)
-        Dt(comp[a], comp[b]) = (a == b ? xi[a] : 0.0) - xi[a] * n[a] * n[b] * xi[b] / nXn;
+        Dt(comp[a], comp[b]) = (a == b ? xi[a] : 0.0) - (1.0 - keep) * xi[a] * n[a] * n[b] * xi[b] / nXn;
     t.plastic_increment = dl;
     double work = 0;
     for (int j = 0; j < 4; ++j) work += sig[comp[j]] * (t.eps_p[comp[j]] - c.eps_p[comp[j]]);
@@ -222,8 +253,8 @@ struct ShiftedIntegrationTimoshenko {
       const double f_plus = detail::yield_function(detail::forces_at(sig, r, 1.0, p.L0), p.yield);
       if (std::max(f_minus, f_plus) < 0) return false;
       st.hinge = f_plus >= f_minus ? 1 : -1;
-      st.s = -double(st.hinge);
-      if (partner && partner->hinge == 0) partner->s = 0.0;
+      move_point(st, -double(st.hinge));
+      if (partner && partner->hinge == 0) move_point(*partner, 0.0);
       return true;
     }
     const Vec6 eps = generalized_strain(p, st.s, d);
@@ -231,9 +262,9 @@ struct ShiftedIntegrationTimoshenko {
     for (int i = 0; i < 6; ++i) sig[i] = p.D[i] * (eps[i] - st.eps_p[i]);
     if (st.plastic_increment > 0 || detail::yield_function(sig, p.yield) > -1e-6) return false;
     st.hinge = 0;
-    st.s = Placement::elastic_point(p.slot);
+    move_point(st, Placement::elastic_point(p.slot));
     if (partner && partner->hinge == 0 && partner_props)
-      partner->s = Placement::elastic_point(partner_props->slot);
+      move_point(*partner, Placement::elastic_point(partner_props->slot));
     return true;
   }
 };

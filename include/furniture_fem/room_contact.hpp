@@ -9,8 +9,7 @@
 //    contact from nodal coordinates);
 //  - element against element of two different bodies: capsules around the centre lines, l the
 //    distance of the closest points and L the mean member width; candidate pairs come from the CGAL
-//    broad phase (contact.hpp), refreshed every `broad_phase_interval` steps with a margin that covers
-//    the motion in between;
+//    broad phase (contact.hpp), re-run whenever a node has moved more than half the boxes' margin
 //  - element against rigid triangle-mesh obstacles.
 // Each body carries its own parameters (alpha, Dc, mu on the floor along its longer and shorter edge,
 // mu against walls); between two items the paper's mu between furniture applies, with alpha and Dc
@@ -58,15 +57,23 @@ struct PairForce {
 };
 
 template <class Law>
+inline constexpr bool contact_law_has_history = false;
+template <class Normal, class Damping>
+inline constexpr bool contact_law_has_history<ContactLaw<Normal, Damping, StickSlip>> = true;
+
+template <class Law>
 class RoomContact {
+  static constexpr bool law_has_history = contact_law_has_history<Law>;
   static_assert(ContactLawPolicy<Law>,
                 "furniture_fem: RoomContact needs a contact law with force(kinematics, params, state) returning "
                 "ContactForce; see docs/contact.md");
 
  public:
   static constexpr int floor_id = -1, wall_id = -2, obstacle_id = -3;
-  int broad_phase_interval = 10;     // steps between broad-phase refreshes
-  double max_speed = 5.0;            // m/s: the margin covers this speed over the interval
+  // Candidate pairs come from boxes inflated by `margin`; the broad phase runs again as soon as any
+  // node has moved more than margin / 2 since the last run (two capsules can then have approached by
+  // at most the margin, so no contact is missed), checked at every evaluation in O(nodes).
+  double margin = 0.01;  // m
   bool item_contact = true;
 
   RoomContact() = default;
@@ -173,8 +180,13 @@ class RoomContact {
 
   void element_contacts(const ContactView& view, Eigen::VectorXd& f) {
     const Model& model = view.model;
-    if (steps_ >= next_broad_phase_ || candidates_.empty()) {
-      const double margin = max_speed * view.dt * broad_phase_interval;
+    bool rerun = x_broad_.size() != view.x.size();
+    if (!rerun) {
+      const double limit2 = 0.25 * margin * margin;
+      for (size_t n = 0; n < view.x.size() && !rerun; ++n) rerun = (view.x[n] - x_broad_[n]).squaredNorm() > limit2;
+    }
+    if (rerun) {
+      x_broad_ = view.x;
       std::vector<ElementBox> boxes;
       boxes.reserve(model.num_elements());
       for (int e = 0; e < model.num_elements(); ++e) {
@@ -182,8 +194,7 @@ class RoomContact {
         boxes.push_back(ElementBox::around(view.x[el.n1], view.x[el.n2],
                                            0.5 * model.section_of(e).contact_width() + margin, e, el.body));
       }
-      candidates_ = broad_phase_.pairs(boxes);
-      next_broad_phase_ = steps_ + broad_phase_interval;
+      broad_phase_.pairs(boxes, candidates_);
       ++broad_runs_;
     }
     for (const auto& [ea, eb] : candidates_) {
@@ -202,10 +213,15 @@ class RoomContact {
       sp.L = L;
       sp.dt = view.dt;
       const ContactParams prm = mean_params(bodies_[A.body].item, bodies_[B.body].item);
-      const auto it = pair_state_.find(key(ea, eb));
-      ContactState st = it == pair_state_.end() ? ContactState{} : it->second;
+      // Only laws with a history (a tangential spring) keep per-pair state across steps.
+      ContactState st;
+      if constexpr (law_has_history) {
+        const auto it = pair_state_.find(key(ea, eb));
+        if (it != pair_state_.end()) st = it->second;
+      }
       const auto nf = evaluate_segment_pair(law_, sp, prm, st);
-      if (nf.in_contact) pair_trial_[key(ea, eb)] = st;
+      if constexpr (law_has_history)
+        if (nf.in_contact) pair_trial_[key(ea, eb)] = st;
       if (!nf.in_contact) continue;
       f.template segment<3>(6 * A.n1) += nf.on_a0;
       f.template segment<3>(6 * A.n2) += nf.on_a1;
@@ -271,7 +287,8 @@ class RoomContact {
   BroadPhase broad_phase_;
   std::vector<std::pair<int, int>> candidates_;
   std::vector<PairForce> pair_forces_;
-  long steps_ = 0, next_broad_phase_ = 0, broad_runs_ = 0;
+  std::vector<Vec3> x_broad_;  // node positions at the last broad phase
+  long steps_ = 0, broad_runs_ = 0;
   int active_ = 0;
 };
 

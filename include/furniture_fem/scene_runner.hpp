@@ -199,6 +199,58 @@ inline std::vector<RigidPlane> scene_planes(const SceneSpec& s) {
   return planes;
 }
 
+// A scene turned into a composed solver: the model, its items, the table motion and the simulation
+// (owned here so the model outlives the simulation that refers to it). Fidelity per item: "rigid"
+// items are solved as rigid bodies; "auto" items are rigid unless the scene asks for their sectional
+// forces (model only what the scene needs); "full" and "coarse" are finite-element bodies.
+template <class Law, class Solver>
+struct SceneSimulation {
+  using Sim = Simulation<AsiGaussTimoshenko, RuntimeIntegrator, Solver, RoomContact<Law>>;
+  std::unique_ptr<Model> model = std::make_unique<Model>();
+  std::vector<ItemInfo> items;
+  TableMotion motion;
+  RuntimeIntegrator integrator;
+  std::unique_ptr<Sim> sim;
+  std::vector<int> rigid_bodies;
+
+  explicit SceneSimulation(const SceneSpec& spec, int refresh_interval = 20, int threads = 0) {
+    items = build_scene(spec, *model);
+    motion = scene_table_motion(spec);
+    RoomContact<Law> contact(*model, scene_body_contacts(spec, *model, items), scene_planes(spec));
+    for (const auto& ob : spec.obstacles) contact.add_obstacle(MeshObstacle::from_file(spec.resolve(ob.file)));
+    switch (spec.integrator.scheme) {
+      case IntegratorKind::paper_newmark: integrator = RuntimeIntegrator::from(Newmark::paper()); break;
+      case IntegratorKind::average_acceleration:
+        integrator = RuntimeIntegrator::from(Newmark::average_acceleration());
+        break;
+      case IntegratorKind::generalized_alpha:
+        integrator = RuntimeIntegrator::from(GeneralizedAlpha{spec.integrator.rho_inf});
+        break;
+    }
+    integrator.mode = spec.integrator.iterate_to_equilibrium ? EquilibriumMode::iterate : EquilibriumMode::carry_over;
+    SimulationOptions so;
+    so.dt = spec.dt;
+    so.refresh_interval = refresh_interval;
+    so.threads = threads;
+    sim = std::make_unique<Sim>(*model, integrator, so, std::move(contact));
+    const TableMotion* m = &motion;
+    sim->set_table_acceleration([m](double t) { return m->at(t); });
+    for (size_t i = 0; i < items.size(); ++i) {
+      bool rigid = items[i].fidelity == Fidelity::rigid;
+      if (items[i].fidelity == Fidelity::automatic) {
+        rigid = true;
+        const std::string item_name = items[i].name;
+        for (const auto& r : spec.outputs.sectional_forces)
+          if (r.item == item_name) rigid = false;
+      }
+      if (rigid) {
+        sim->set_rigid(items[i].body);
+        rigid_bodies.push_back(items[i].body);
+      }
+    }
+  }
+};
+
 namespace detail {
 
 // Best rigid rotation of a body from its initial to its current nodes (for tilt and final state).
@@ -279,7 +331,6 @@ struct Progress {
 
 template <class Law, class Solver>
 RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt) {
-  using Sim = Simulation<AsiGaussTimoshenko, RuntimeIntegrator, Solver, RoomContact<Law>>;
   namespace fs = std::filesystem;
   RunSummary sum;
   const auto t_start = std::chrono::steady_clock::now();
@@ -288,32 +339,16 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt) {
   sum.out_dir = out;
   const bool figures = opt.figures.value_or(spec.outputs.figures);
 
-  // Model, items, contact and excitation.
-  Model model;
-  const std::vector<ItemInfo> items = build_scene(spec, model);
+  SceneSimulation<Law, Solver> scene(spec);
+  using Sim = typename SceneSimulation<Law, Solver>::Sim;
+  const Model& model = *scene.model;
+  const std::vector<ItemInfo>& items = scene.items;
+  const TableMotion& motion = scene.motion;
+  const RuntimeIntegrator& integ = scene.integrator;
+  Sim& sim = *scene.sim;
   sum.elements = model.num_elements();
   sum.nodes = model.num_nodes();
   sum.bodies = model.num_bodies();
-  const TableMotion motion = scene_table_motion(spec);
-  RoomContact<Law> contact(model, scene_body_contacts(spec, model, items), scene_planes(spec));
-  for (const auto& ob : spec.obstacles) {
-    MeshObstacle m = MeshObstacle::from_file(spec.resolve(ob.file));  // placement: see ObstacleSpec
-    contact.add_obstacle(std::move(m));
-  }
-
-  RuntimeIntegrator integ;
-  switch (spec.integrator.scheme) {
-    case IntegratorKind::paper_newmark: integ = RuntimeIntegrator::from(Newmark::paper()); break;
-    case IntegratorKind::average_acceleration: integ = RuntimeIntegrator::from(Newmark::average_acceleration()); break;
-    case IntegratorKind::generalized_alpha: integ = RuntimeIntegrator::from(GeneralizedAlpha{spec.integrator.rho_inf}); break;
-  }
-  integ.mode = spec.integrator.iterate_to_equilibrium ? EquilibriumMode::iterate : EquilibriumMode::carry_over;
-  SimulationOptions so;
-  so.dt = spec.dt;
-  so.refresh_interval = 20;
-  so.gravity = Vec3(0, 0, -9.80665);
-  Sim sim(model, integ, so, std::move(contact));
-  sim.set_table_acceleration([&motion](double t) { return motion.at(t); });
 
   // Output requests resolved to nodes and elements (errors name the request).
   struct MarkerOut {
@@ -510,6 +545,17 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt) {
       {"integrator", integ.name()},
       {"linear_solver", std::string(Solver::name)},
       {"factorizations", sum.factorizations},
+      {"rigid_bodies", [&] {
+         nlohmann::json a = nlohmann::json::array();
+         for (int b : scene.rigid_bodies) a.push_back(model.body(b).name);
+         return a;
+       }()},
+      {"step_time_s", {{"elements", sim.timings().elements},
+                       {"contact", sim.timings().contact},
+                       {"solve", sim.timings().solve},
+                       {"factorize", sim.timings().factorize},
+                       {"other", sim.timings().other()},
+                       {"total", sim.timings().total}}},
       {"energy_imbalance_relative", sum.energy_imbalance},
       {"max_energy_imbalance_relative", sum.max_energy_imbalance},
       {"ground_motion_peak_m_s2", {motion.x.peak(), motion.has_y ? motion.y.peak() : 0.0, motion.has_z ? motion.z.peak() : 0.0}},

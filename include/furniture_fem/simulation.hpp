@@ -17,8 +17,10 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
+#include <chrono>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -29,6 +31,7 @@
 
 #define FURNITURE_FEM_SIMULATION_INTERNAL
 #include "detail/body_system.hpp"
+#include "detail/parallel.hpp"
 #include "detail/rotation.hpp"
 #undef FURNITURE_FEM_SIMULATION_INTERNAL
 
@@ -43,6 +46,7 @@ struct SimulationOptions {
   int refresh_interval = 1;     // refresh each body's matrix every N steps (1: every step)
   bool geometric_stiffness = true;
   bool check_finite = true;     // stop with a diagnosis on NaN / divergence
+  int threads = 1;              // threads over bodies (element forces, solves); 0: all hardware threads
 };
 
 // What a contact model sees: the current state of the structure, all in the table frame.
@@ -60,6 +64,13 @@ struct NoContact {
 
 template <class C>
 concept ContactPolicy = requires(C c, const ContactView& view, Eigen::VectorXd& f) { c.add_forces(view, f); };
+
+// Where the time of the steps went (seconds, accumulated since the start; wall clock). Factorisation
+// and assembly are part of `solve`; `factorize` counts the factorisations alone.
+struct StepTimings {
+  double elements = 0, contact = 0, solve = 0, factorize = 0, total = 0;
+  double other() const { return total - elements - contact - solve; }
+};
 
 struct StepInfo {
   int iterations = 0;
@@ -202,9 +213,16 @@ class Simulation {
 
   // ---- time stepping ----
   StepInfo step() {
+    const auto step_start = std::chrono::steady_clock::now();
+    struct AddTotal {
+      StepTimings& t;
+      std::chrono::steady_clock::time_point s;
+      ~AddTotal() { t.total += std::chrono::duration<double>(std::chrono::steady_clock::now() - s).count(); }
+    } add_total{timings_, step_start};
     if (!started_) start();
-    const double dt = opt_.dt, b = coef_.beta, g = coef_.gamma, am = coef_.alpha_m, af = coef_.alpha_f;
+    const double dt = opt_.dt, b = coef_.beta, g = coef_.gamma;
     const double t1 = t_ + dt;
+    t_state_ = t1;
     u0_ = u_;
     R0_ = R_;
     for (auto& bs : systems_)
@@ -233,16 +251,29 @@ class Simulation {
     // paper's damping evaluated there would pump energy: contact sees the constant-acceleration
     // estimate v_n + dt a_n instead.
     v_ = vn_ + dt * an_;
-    contact_forces(t1, fc1_);
+    timed(timings_.contact, [&] { contact_forces(t1, fc1_); });
     v_ = vn_ + dt * ((1 - g) * an_ + g * a_);
     double rel = residual(fext1_);
     info.residual = rel;
     const int max_it = integrator_.mode == EquilibriumMode::iterate ? opt_.max_iterations : 1;
+    if (opt_.check_finite && !std::isfinite(rel))
+      throw SimulationError(t_, "the residual is not finite (NaN or infinity) at the start of the step: " +
+                                    non_finite_diagnosis());
+    const bool carry = integrator_.mode == EquilibriumMode::carry_over;
     for (int it = 0; it < max_it; ++it) {
-      info.refreshed_bodies += solve_bodies();
+      timed(timings_.solve, [&] { info.refreshed_bodies += solve_bodies(); });
       kinematics();
-      evaluate_elements(false);
-      contact_forces(t1, fc1_);
+      timed(timings_.elements, [&] { evaluate_elements(false); });
+      if (carry) {
+        // Carry-over: the contact forces applied over this step are those of the predictor (fc1_);
+        // the unbalance left by the solve enters the next step's residual, so neither the contact
+        // forces nor the residual are evaluated again here (half the contact cost).
+        info.iterations = 1;
+        if (opt_.check_finite && !Du_.allFinite())
+          throw SimulationError(t1, "the displacement increment is not finite: " + non_finite_diagnosis());
+        break;
+      }
+      timed(timings_.contact, [&] { contact_forces(t1, fc1_); });
       rel = residual(fext1_);
       info.iterations = it + 1;
       info.residual = rel;
@@ -395,6 +426,7 @@ class Simulation {
     return f;
   }
   const SimulationOptions& options() const { return opt_; }
+  const StepTimings& timings() const { return timings_; }
   const Integrator& integrator() const { return integrator_; }
 
  private:
@@ -456,9 +488,13 @@ class Simulation {
       Vec3 c = Vec3::Zero();
       for (int n : bs.nodes) c += model_.node(n).X;
       bs.Xc = bs.nodes.empty() ? c : Vec3(c / bs.nodes.size());
+      body_order_.push_back(b);
       solvers_[b] = std::make_unique<LinearSolver>();
       solvers_[b]->analyse(bs.K);
     }
+    std::stable_sort(body_order_.begin(), body_order_.end(),
+                     [&](int a, int b) { return systems_[a].elements.size() > systems_[b].elements.size(); });
+    if (opt_.threads <= 0) opt_.threads = detail::hardware_threads();
   }
 
   // Initial accelerations from the equations of motion, and the first forces.
@@ -479,7 +515,6 @@ class Simulation {
   void external_forces(double t, Eigen::VectorXd& f) {
     const Vec3 at = table_acc_ ? table_acc_(t) : Vec3::Zero();
     const double scale = static_ ? load_factor_ : (load_scale_ ? load_scale_(t) : 1.0);
-    spring_scale_ = scale;  // spring targets follow the loads: the same time t_{n+1} (or load factor)
     for (int n = 0; n < model_.num_nodes(); ++n) {
       const double m = mass_[6 * n];
       fgrav_.segment<3>(6 * n) = m * opt_.gravity * (static_ ? load_factor_ : 1.0);
@@ -487,6 +522,9 @@ class Simulation {
       f.segment<3>(6 * n + 3).setZero();
     }
     f += scale * nodal_load_;
+    // A support spring's force k (scale target - u) is split: k scale target is a load (so that a step
+    // sees its target at t_{n+1} from its first residual on, in carry-over mode too), k u is internal.
+    for (const auto& sp : springs_) f[6 * sp.node + sp.dof] += scale * sp.k * sp.target;
   }
 
   void contact_forces(double t, Eigen::VectorXd& f) {
@@ -499,11 +537,8 @@ class Simulation {
 
   // Element forces (and, where a body's matrix is due, its tangent) at the current configuration.
   void evaluate_elements(bool assemble_all) {
-    const int nb = static_cast<int>(systems_.size());
-#if defined(FFEM_HAVE_OPENMP)
-#pragma omp parallel for schedule(dynamic, 1)
-#endif
-    for (int b = 0; b < nb; ++b) evaluate_body(b, assemble_all || systems_[b].needs_refresh);
+    detail::parallel_for(body_order_, opt_.threads,
+                         [&](int b) { evaluate_body(b, assemble_all || systems_[b].needs_refresh); });
   }
 
   void evaluate_body(int b, bool assemble) {
@@ -550,7 +585,7 @@ class Simulation {
     for (const auto& sp : springs_) {
       if (model_.node(sp.node).body != b) continue;
       const int i = 6 * sp.node + sp.dof;
-      fint_[i] += sp.k * (dof_value(sp.node, sp.dof) - spring_scale() * sp.target);
+      fint_[i] += sp.k * dof_value(sp.node, sp.dof);  // its target is a load (external_forces)
       if (assemble) Kv[bs.diag_slot[6 * local_index_[sp.node] + sp.dof]] += kf * sp.k;
     }
     if (assemble) {
@@ -600,49 +635,47 @@ class Simulation {
   // of bodies whose matrix was refreshed.
   int solve_bodies() {
     int refreshed = 0;
-    const int nb = static_cast<int>(systems_.size());
     for (auto& bs : systems_)
       if (bs.steps_since_refresh >= opt_.refresh_interval) bs.needs_refresh = true;
     bool any = false;
     for (auto& bs : systems_) any = any || (bs.needs_refresh && !bs.assembled);
-    if (any) {
-#if defined(FFEM_HAVE_OPENMP)
-#pragma omp parallel for schedule(dynamic, 1)
-#endif
-      for (int b = 0; b < nb; ++b)
+    if (any)
+      detail::parallel_for(body_order_, opt_.threads, [&](int b) {
         if (systems_[b].needs_refresh && !systems_[b].assembled) evaluate_body(b, true);
-    }
-    bool failed = false;
-#if defined(FFEM_HAVE_OPENMP)
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : refreshed) reduction(|| : failed)
-#endif
-    for (int b = 0; b < nb; ++b) {
+      });
+    std::atomic<bool> failed{false};
+    std::atomic<int> refreshed_count{0};
+    detail::parallel_for(body_order_, opt_.threads, [&](int b) {
       auto& bs = systems_[b];
       if (bs.rigid) {
         if (static_) {
           failed = true;
-          continue;
+          return;
         }
         solve_rigid(bs);
         bs.needs_refresh = false;
         bs.assembled = false;
-        continue;
+        return;
       }
       const bool reuse = opt_.refresh_interval > 1 && !static_;
       Mat3 Q = Mat3::Identity();
       if (reuse) Q = body_rotation(bs);
       if (bs.needs_refresh) {
         try {
+          const auto t0 = std::chrono::steady_clock::now();
           solvers_[b]->factorize(bs.K);
+          const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          const std::lock_guard<std::mutex> lock(timing_mutex_);
+          timings_.factorize += spent;
         } catch (const std::exception&) {
-          failed = true;  // never throw out of a parallel region
-          continue;
+          failed = true;
+          return;
         }
         bs.Q_factor = Q;
         bs.needs_refresh = false;
         bs.assembled = false;
         bs.steps_since_refresh = 0;
-        ++refreshed;
+        ++refreshed_count;
       }
       // Take the body's rigid rotation since the factorisation out of the right-hand side (P^T r),
       // solve with the old matrix, put it back (P y): exact for a rigidly rotated body.
@@ -658,7 +691,8 @@ class Simulation {
         Du_.segment<3>(6 * g) += P * bs.dx.segment<3>(6 * k);
         Du_.segment<3>(6 * g + 3) += P * bs.dx.segment<3>(6 * k + 3);
       }
-    }
+    });
+    refreshed = refreshed_count;
     if (failed)
       throw SimulationError(t_, "the linear solver failed: the effective matrix is not positive definite or the "
                                 "solution is not finite (an unsupported static model, or a diverging step)");
@@ -708,12 +742,25 @@ class Simulation {
     }
   }
 
+  // Names the first node whose state is not finite, for the diagnosis of a diverged step.
+  std::string non_finite_diagnosis() const {
+    for (int n = 0; n < model_.num_nodes(); ++n) {
+      const bool bad = !x_[n].allFinite() || !v_.segment<6>(6 * n).allFinite() || !Du_.segment<6>(6 * n).allFinite() ||
+                       !r_.segment<6>(6 * n).allFinite();
+      if (bad)
+        return "node " + std::to_string(n) + " of body '" + model_.body(model_.node(n).body).name +
+               "' has a non-finite position, velocity or force; the step diverged (try a smaller dt or a softer "
+               "penalty)";
+    }
+    return "a non-finite value appeared; the step diverged (try a smaller dt)";
+  }
+
   double dof_value(int n, int dof) const {
     return dof < 3 ? u_[n][dof] : detail::rotation_log(R_[n])[dof - 3];
   }
-  // Scale of the spring targets, set with the external forces: load_scale(t_{n+1}) while a step solves
-  // for t_{n+1} (load_scale(t_n) lagged the targets one step behind the loads), load factor in statics.
-  double spring_scale() const { return spring_scale_; }
+  // Scale of the spring targets at the time of the configuration: load_scale(t_{n+1}) while a step
+  // solves for t_{n+1}, like the loads (load_scale(t_n) lagged the targets one step behind them).
+  double spring_scale() const { return static_ ? load_factor_ : (load_scale_ ? load_scale_(t_state_) : 1.0); }
 
   Mat3 body_rotation(const detail::BodySystem& bs) const {
     Vec3 xc = Vec3::Zero();
@@ -766,7 +813,8 @@ class Simulation {
   Contact contact_;
   std::function<Vec3(double)> table_acc_;
   std::function<double(double)> load_scale_;
-  double t_ = 0, load_factor_ = 1, spring_scale_ = 1;
+  double t_ = 0, load_factor_ = 1;
+  double t_state_ = 0;  // time of the current configuration: t_ between steps, t_{n+1} during a step
   long steps_ = 0;
   bool started_ = false, static_ = false;
 
@@ -781,6 +829,15 @@ class Simulation {
   std::vector<detail::BodySystem> systems_;
   std::vector<std::unique_ptr<LinearSolver>> solvers_;  // Eigen's solvers are not copyable
   EnergyLedger ledger_;
+  StepTimings timings_;
+  std::mutex timing_mutex_;
+  std::vector<int> body_order_;  // bodies by decreasing size: the largest starts first in parallel loops
+  template <class F>
+  void timed(double& acc, F&& f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    acc += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
   struct Spring {
     int node, dof;
     double k, target;

@@ -1,0 +1,71 @@
+// Per-step cost of the paper's configurations 1, 2 and 3 (built-in synthetic 3-D motion, dt = 1 ms),
+// and of 2, 4 and 8 copies of configuration 3 side by side (scaling), with the time split into
+// element forces, contact (broad + narrow phase + law), linear solve (incl. factorisations) and the
+// rest. Counters: ms per step of each phase, elements, bodies.
+//   ./build/bench/bench_scenes --benchmark_min_time=2 --benchmark_repetitions=3
+//                              --benchmark_report_aggregates_only=true
+// The end-to-end figure (configuration 3, 10 s of 3-D input, every item at full ASI-Gauss fidelity)
+// is the main job itself: /usr/bin/time -v ./build/examples/furniture_quake --no-figures (see docs/performance.md).
+#include <benchmark/benchmark.h>
+
+#include <furniture_fem/scene_runner.hpp>
+
+namespace {
+using namespace furniture_fem;
+
+SceneSpec synthetic(SceneSpec s) {
+  s.ground_motion = GroundMotionSpec{};
+  s.ground_motion.source = MotionSource::synthetic;
+  s.ground_motion.pga = 8.0;
+  s.ground_motion.dimensions = MotionDimensions::three_d;
+  s.outputs = OutputSpec{};
+  return s;
+}
+
+// Configuration 3 copied `copies` times along Y on a table made long enough for them.
+SceneSpec copies_of_configuration3(int copies) {
+  SceneSpec base = synthetic(configuration(3));
+  SceneSpec s = base;
+  s.items.clear();
+  s.table.size_y = 4.0 * copies;
+  s.walls = default_walls(s.table);
+  for (int c = 0; c < copies; ++c)
+    for (auto it : base.items) {
+      it.name += "_" + std::to_string(c);
+      it.y += 4.0 * (c - 0.5 * (copies - 1));
+      s.items.push_back(it);
+    }
+  return s;
+}
+
+void run_steps(benchmark::State& state, const SceneSpec& spec, int refresh) {
+  SceneSimulation<PaperAnisotropicFloorLaw, DirectLdltSolver> scene(spec, refresh);
+  auto& sim = *scene.sim;
+  for (int i = 0; i < 20; ++i) sim.step();  // settle, first factorisations
+  const StepTimings t0 = sim.timings();
+  const long s0 = sim.steps();
+  for (auto _ : state) sim.step();
+  const StepTimings t = sim.timings();
+  const double n = double(sim.steps() - s0);
+  state.counters["elements"] = scene.model->num_elements();
+  state.counters["ms_elements"] = 1e3 * (t.elements - t0.elements) / n;
+  state.counters["ms_contact"] = 1e3 * (t.contact - t0.contact) / n;
+  state.counters["ms_solve"] = 1e3 * (t.solve - t0.solve) / n;
+  state.counters["ms_factorize"] = 1e3 * (t.factorize - t0.factorize) / n;
+  state.counters["ms_other"] = 1e3 * (t.other() - t0.other()) / n;
+}
+
+void BM_Configuration(benchmark::State& state) {
+  run_steps(state, synthetic(configuration(static_cast<int>(state.range(0)))), static_cast<int>(state.range(1)));
+}
+BENCHMARK(BM_Configuration)
+    ->ArgNames({"config", "refresh"})
+    ->Args({1, 20})->Args({2, 20})->Args({3, 20})->Args({3, 1})->Args({3, 100})
+    ->Unit(benchmark::kMillisecond);
+
+void BM_ConfigurationCopies(benchmark::State& state) {
+  run_steps(state, copies_of_configuration3(static_cast<int>(state.range(0))), 20);
+}
+BENCHMARK(BM_ConfigurationCopies)->ArgNames({"copies"})->Arg(1)->Arg(2)->Arg(4)->Arg(8)->Unit(benchmark::kMillisecond);
+
+}  // namespace
