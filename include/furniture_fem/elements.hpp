@@ -170,6 +170,15 @@ struct ShiftedIntegrationTimoshenko {
   }
 
   static void response(const ElementProps& p, const State& c0, const Vec12& d, Vec12& f, Mat12& k, State& t) {
+    evaluate<true>(p, c0, d, f, &k, t);
+  }
+  // Forces and trial history without the tangent (most evaluations of a step reuse a matrix): the
+  // 12 x 12 product is most of the kernel's cost.
+  static void internal_force(const ElementProps& p, const State& c0, const Vec12& d, Vec12& f, State& t) {
+    evaluate<false>(p, c0, d, f, nullptr, t);
+  }
+  template <bool WithTangent>
+  static void evaluate(const ElementProps& p, const State& c0, const Vec12& d, Vec12& f, Mat12* k, State& t) {
     const State c = c0.moved ? rebased(p, c0, d) : c0;
     t = c;
     const auto B = detail::timoshenko_B(p.L0, c.s);
@@ -180,9 +189,10 @@ struct ShiftedIntegrationTimoshenko {
     for (int i = 0; i < 6; ++i) Dt(i, i) = p.D[i];
     t.plastic_increment = 0;
     if (c.hinge != 0 && detail::yield_function(sig, p.yield) > 0) return_map(p, c, sig, Dt, t);
-    f = p.L0 * B.transpose() * sig;
-    k = p.L0 * B.transpose() * Dt * B;
+    f.noalias() = p.L0 * B.transpose() * sig;
+    if constexpr (WithTangent) k->noalias() = p.L0 * B.transpose() * Dt * B;
   }
+
 
   static SectionForces section_forces(const ElementProps& p, const State& c0, const Vec12& d) {
     const State c = c0.moved ? rebased(p, c0, d) : c0;

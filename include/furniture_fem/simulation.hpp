@@ -560,7 +560,12 @@ class Simulation {
                                        R_[el.n2], E0_[e], props_[e].L0);
       frames_[e] = cr.E;
       d_[e] = cr.d;
-      Element::response(props_[e], committed_[e], cr.d, f, k, trial_[e]);
+      if constexpr (requires { Element::internal_force(props_[e], committed_[e], cr.d, f, trial_[e]); }) {
+        if (assemble) Element::response(props_[e], committed_[e], cr.d, f, k, trial_[e]);
+        else Element::internal_force(props_[e], committed_[e], cr.d, f, trial_[e]);
+      } else {
+        Element::response(props_[e], committed_[e], cr.d, f, k, trial_[e]);
+      }
       fl_[e] = f;
       for (int blk = 0; blk < 4; ++blk) fg.segment<3>(3 * blk) = cr.E * f.segment<3>(3 * blk);
       fint_.segment<6>(6 * el.n1) += fg.head<6>();
