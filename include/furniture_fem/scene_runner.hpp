@@ -16,10 +16,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -42,6 +44,11 @@ struct RunOptions {
   int output_every = 10;                      // history rows every N steps (10 ms at dt = 1 ms)
   const std::atomic<bool>* stop = nullptr;    // set by a signal handler to stop cleanly
   std::optional<bool> figures;                // overrides outputs.figures
+  // A run that creates energy cannot be trusted: it ends as "diverged", with a diagnosis, as soon as
+  // the contact forces' net work or the ledger's imbalance exceeds this fraction of the ledger's scale
+  // (the contact laws only store and dissipate energy, the integrators only dissipate; checked at
+  // every output row). 0: never. See energy_creation_diagnosis().
+  double energy_creation_limit = 0.25;
 };
 
 struct ItemFinalState {
@@ -199,6 +206,69 @@ inline std::vector<RigidPlane> scene_planes(const SceneSpec& s) {
   return planes;
 }
 
+// A node-mass estimate of the largest stable time step of the contact penalty, which the solver
+// treats explicitly (contact forces are not in the effective matrix): a floor node of mass m on the
+// penalty spring alpha / L is stable for dt below 2 sqrt(m L / alpha). Conservative, since the
+// structure around a node adds to its mass (the paper's penalties run stably at dt = 5 ms).
+struct ContactStepEstimate {
+  double dt = std::numeric_limits<double>::infinity();
+  std::string item;  // the item whose floor nodes give the estimate
+};
+template <class Sim>
+ContactStepEstimate contact_step_estimate(const Sim& sim, const Model& model, const std::vector<ItemInfo>& items,
+                                          const std::vector<BodyContact>& contacts) {
+  std::vector<double> half(model.num_nodes(), std::numeric_limits<double>::infinity());
+  for (int e = 0; e < model.num_elements(); ++e)
+    for (int n : {model.elements()[e].n1, model.elements()[e].n2})
+      half[n] = std::min(half[n], 0.5 * model.section_of(e).contact_width());
+  ContactStepEstimate est;
+  for (const auto& it : items) {
+    const double alpha = contacts.at(it.body).floor.alpha;
+    if (!(alpha > 0)) continue;
+    for (int n : it.bottom_nodes) {
+      const double d = 2.0 * std::sqrt(sim.nodal_mass(n) * half[n] / alpha);
+      if (d < est.dt) est = {d, it.name};
+    }
+  }
+  return est;
+}
+
+// Empty while the energy ledger shows no energy created beyond `limit` times its scale; otherwise
+// why the run cannot be trusted and what to change. Penalty contact can only give back what it
+// stored (a little, unless items start interpenetrated), so net positive contact work means the
+// explicit contact is pumping energy in; a positive imbalance means the time integration made it.
+inline std::string energy_creation_diagnosis(const EnergyLedger& E, double dt, double limit,
+                                             const ContactStepEstimate& est) {
+  if (!(limit > 0)) return {};
+  const double scale = E.scale(), imbalance = E.imbalance();
+  const bool by_contact = E.contact_work > limit * scale, by_integrator = imbalance > limit * scale;
+  if (!by_contact && !by_integrator) return {};
+  const auto fmt = [](double v) {
+    std::ostringstream o;
+    o.precision(3);
+    o << v;
+    return o.str();
+  };
+  std::string why = "energy is being created: ";
+  if (by_contact)
+    why += "the contact forces have done " + fmt(E.contact_work) + " J of net positive work (" +
+           fmt(100 * E.contact_work / scale) + " % of the energy ledger's scale, " + fmt(scale) + " J)";
+  else
+    why += "the energy ledger's imbalance is +" + fmt(imbalance) + " J (" + fmt(100 * imbalance / scale) +
+           " % of its scale, " + fmt(scale) + " J)";
+  why += ", more than the " + fmt(100 * limit) + " % a run may create (RunOptions::energy_creation_limit). ";
+  if (dt > est.dt)
+    why += "The contact penalty is too stiff for the time step: dt = " + fmt(1e3 * dt) +
+           " ms exceeds the explicit contact's stable step, estimated at " + fmt(1e3 * est.dt) + " ms for item '" +
+           est.item + "' (2 sqrt(m L / alpha) over its floor nodes); reduce dt or the penalty alpha_kgf.";
+  else
+    why += "dt = " + fmt(1e3 * dt) + " ms is within the explicit contact's estimated stable step (" +
+           fmt(1e3 * est.dt) + " ms, item '" + est.item +
+           "'): items starting interpenetrated (the penalty releases the energy stored in the overlap) are the "
+           "likely cause; check the placement, or reduce dt or the penalty alpha_kgf.";
+  return why;
+}
+
 // A scene turned into a composed solver: the model, its items, the table motion and the simulation
 // (owned here so the model outlives the simulation that refers to it). Fidelity per item: "rigid"
 // items are solved as rigid bodies; "auto" items are rigid unless the scene asks for their sectional
@@ -217,7 +287,14 @@ struct SceneSimulation {
     items = build_scene(spec, *model);
     motion = scene_table_motion(spec);
     RoomContact<Law> contact(*model, scene_body_contacts(spec, *model, items), scene_planes(spec));
-    for (const auto& ob : spec.obstacles) contact.add_obstacle(MeshObstacle::from_file(spec.resolve(ob.file)));
+    // Obstacle placement (ObstacleSpec): file units times `scale`, turned by `yaw_deg` about z, the
+    // file's origin moved to `position`.
+    for (const auto& ob : spec.obstacles) {
+      TriangleMesh mesh = read_triangle_mesh(spec.resolve(ob.file));
+      const Mat3 R = Eigen::AngleAxisd(ob.yaw_deg * std::numbers::pi / 180.0, Vec3::UnitZ()).toRotationMatrix();
+      for (Vec3& v : mesh.vertices) v = R * (ob.scale * v) + ob.position;
+      contact.add_obstacle(MeshObstacle(std::move(mesh), spec.resolve(ob.file)));
+    }
     switch (spec.integrator.scheme) {
       case IntegratorKind::paper_newmark: integrator = RuntimeIntegrator::from(Newmark::paper()); break;
       case IntegratorKind::average_acceleration:
@@ -410,8 +487,16 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt) {
   std::vector<std::vector<double>> mh(markers.size() * 3), sh(sections.size() * 2);
   std::vector<double> max_tilt(model.num_bodies(), 0.0);
 
+  const ContactStepEstimate step_estimate =
+      contact_step_estimate(sim, model, items, scene_body_contacts(spec, model, items));
   auto record = [&](const Sim& s) {
     const double t = s.time();
+    // Checked before anything of this row is written: a run creating energy stops here.
+    const auto E = s.energy();
+    if (s.steps() > 0) {
+      const std::string why = energy_creation_diagnosis(E, spec.dt, opt.energy_creation_limit, step_estimate);
+      if (!why.empty()) throw SimulationError(t, why);
+    }
     th.push_back(t);
     std::vector<double> row{t};
     for (size_t i = 0; i < markers.size(); ++i) {
@@ -430,7 +515,6 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt) {
       sh[2 * i + 1].push_back(f.Qz);
     }
     section_csv.row(row);
-    const auto E = s.energy();
     energy_csv.row({t, E.kinetic, E.strain, E.gravity_potential, E.external_work, E.contact_work, E.damping_work,
                     E.plastic_work, E.imbalance()});
     if (s.steps() > 0) sum.max_energy_imbalance = std::max(sum.max_energy_imbalance, std::abs(E.imbalance()) / E.scale());
@@ -499,9 +583,14 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt) {
       low0 = std::min(low0, model.node(n).X.z());
     }
     st.lift = low - low0;
+    // It rests (or leans) on the item that pushes it up the most (more than 1 N): an item pressed
+    // down by another one does not rest on it.
+    double most_up = 1.0;
     for (const auto& pf : final_pairs) {
       const int other = pf.body_a == it.body ? pf.body_b : pf.body_b == it.body ? pf.body_a : -100;
-      if (other >= 0 && pf.force_on_a.norm() > 1.0) st.resting_on = body_names[other];
+      if (other < 0) continue;
+      const double up = pf.body_a == it.body ? pf.force_on_a.z() : -pf.force_on_a.z();
+      if (up > most_up) most_up = up, st.resting_on = body_names[other];
     }
     if (st.tilt_deg > 60) st.state = "overturned";
     else if (!st.resting_on.empty() && (st.tilt_deg > 5 || st.lift > 0.03)) st.state = "resting_on_item";

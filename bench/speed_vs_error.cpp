@@ -1,0 +1,384 @@
+// Speed against error: what each modelling and numerical choice costs and what it buys, on a small
+// but representative scene (the tall cabinet 0.2 m behind the desk, 3 s of the built-in synthetic
+// 3-D motion), measured against a converged reference (dt = 0.25 ms, panel grids halved and 25 mm
+// elements, paper Newmark carry-over, direct solver refreshed every step).
+//
+// Families (each point changes one thing from the default: paper Newmark carry-over, dt = 1 ms,
+// 50 mm elements on the tuned grids, direct LDL^T refreshed every 20 steps, full fidelity):
+//   mesh        element_length 0.025 / 0.1 / 0.2 m, grid_scale 0.5 / 2
+//   dt          0.25 / 0.5 / 2 / 5 ms
+//   integrator  average acceleration, generalized-alpha (rho_inf 0.5); each also iterated to
+//               equilibrium (paper Newmark too)
+//   solver      CG (incomplete Cholesky) refreshed every 20 steps; direct refreshed every 1 / 100
+//   fidelity    coarse, rigid, auto (the desk, whose sectional force is asked for, full; the cabinet
+//               rigid)
+// Errors against the reference: marker displacement histories (the cabinet's top front centre and
+// the desk's top back centre, table frame, sampled every 10 ms): RMS over the run and peak, in mm,
+// the larger of the two markers; final state: slide (mm) and tilt (deg), the larger over the two
+// items; peak shear force |Q| of the desk's top-board element next to its back centre (%, when the
+// desk is a finite-element body). Wall time: building the scene and stepping it, one thread.
+//
+// Writes <docs>/speed_vs_error.csv, <docs>/speed_vs_error.md (the table) and
+// <docs>/figures/speed_vs_error.png (wall time against marker RMS error, log-log, Pareto front).
+//   cd /work/main && nice -n 10 ./build/bench/speed_vs_error            # ~15-25 min on one core
+//   ./build/bench/speed_vs_error --only default,dt_5ms --duration 1     # a subset, for a quick look
+// Options: --docs DIR (default docs), --duration S (3), --pga M_S2 (3.0), --only a,b,c, --list.
+#include <furniture_fem/plot.hpp>
+#include <furniture_fem/scene_runner.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+using namespace furniture_fem;
+
+struct Variant {
+  std::string name, family, label;
+  double dt = 1e-3;
+  double element_length = 0.05, grid_scale = 1.0;
+  IntegratorKind scheme = IntegratorKind::paper_newmark;
+  bool iterate = false;
+  bool cg = false;
+  int refresh = 20;
+  Fidelity fidelity = Fidelity::full;
+};
+
+struct Sample {
+  std::vector<Vec3> markers;
+};
+
+struct Result {
+  std::string status = "completed", diagnosis;
+  double wall = 0;
+  long steps = 0;
+  int elements = 0;
+  std::vector<Sample> samples;  // every 10 ms from t = 0
+  std::vector<double> slide, tilt;  // per item
+  std::optional<double> peak_shear;  // N, the desk's element (none when the desk is rigid)
+  double energy_imbalance = 0;
+};
+
+constexpr double sample_interval = 0.01;
+
+SceneSpec base_scene(double duration, double pga) {
+  SceneSpec s;
+  s.name = "speed vs error: tall cabinet and desk";
+  s.source = s.name;
+  s.walls = {};
+  s.contact.law = ContactLawKind::paper_anisotropic;
+  s.duration = duration;
+  // The tall cabinet (front towards -X) 0.2 m behind the desk's back edge, as in configuration 3's
+  // centre group but closer.
+  const double cabinet_x = 0.5, front = cabinet_x - 0.5 * paper_item(PaperItem::tall_cabinet).D;
+  const double desk_x = front - 0.2 - 0.5 * paper_item(PaperItem::desk).D;
+  s.items.push_back({"tall_cabinet", ItemKind::tall_cabinet, cabinet_x, 0.0, -90.0, Fidelity::full, {}});
+  s.items.push_back({"desk", ItemKind::desk, desk_x, 0.0, -90.0, Fidelity::full, {}});
+  s.ground_motion.source = MotionSource::synthetic;
+  s.ground_motion.pga = pga;
+  s.ground_motion.dimensions = MotionDimensions::three_d;
+  s.ground_motion.seed = 1;
+  s.outputs = OutputSpec{};
+  s.outputs.figures = false;
+  // The desk's sectional force is asked for: "auto" keeps the desk a finite-element body.
+  Model scratch;
+  const auto items = build_scene(s, scratch);
+  const auto [member, element] = element_near(scratch, items[1], items[1].marker("top_back_centre")->local_point);
+  s.outputs.sectional_forces.push_back({"desk", member, element});
+  return s;
+}
+
+SceneSpec scene_for(const Variant& v, double duration, double pga) {
+  SceneSpec s = base_scene(duration, pga);
+  s.dt = v.dt;
+  s.integrator.scheme = v.scheme;
+  s.integrator.rho_inf = 0.5;
+  s.integrator.iterate_to_equilibrium = v.iterate;
+  s.solver = v.cg ? SolverKind::cg : SolverKind::direct;
+  for (auto& it : s.items) {
+    it.fidelity = v.fidelity;
+    if (v.element_length != 0.05) it.params.element_length = v.element_length;
+    if (v.grid_scale != 1.0) it.params.grid_scale = v.grid_scale;
+  }
+  return s;
+}
+
+template <class Solver>
+Result run(const Variant& v, double duration, double pga) {
+  const SceneSpec spec = scene_for(v, duration, pga);
+  Result r;
+  const auto t0 = std::chrono::steady_clock::now();
+  SceneSimulation<PaperAnisotropicFloorLaw, Solver> scene(spec, v.refresh, 1);
+  auto& sim = *scene.sim;
+  const Model& model = *scene.model;
+  r.elements = model.num_elements();
+  const ItemInfo& cabinet = scene.items[0];
+  const ItemInfo& desk = scene.items[1];
+  const std::vector<int> marker_nodes{cabinet.marker("top_front_centre")->node, desk.marker("top_back_centre")->node};
+  // The desk's element nearest to its top back centre, in this variant's mesh.
+  const auto [member, index] = element_near(model, desk, desk.marker("top_back_centre")->local_point);
+  const int section = model.member(find_member(model, desk.body, member)).first_element + index;
+  const bool desk_rigid = sim.is_rigid(desk.body);
+  const long every = std::lround(sample_interval / v.dt);
+  auto sample = [&] {
+    Sample s;
+    for (int n : marker_nodes) s.markers.push_back(sim.displacement(n));
+    r.samples.push_back(s);
+  };
+  double peak = 0;
+  sample();
+  try {
+    while (sim.time() < duration - 0.5 * v.dt) {
+      sim.step();
+      if (!desk_rigid) {
+        const auto f = sim.section_forces(section);
+        peak = std::max(peak, std::hypot(f.Qy, f.Qz));
+      }
+      if (sim.steps() % every == 0) sample();
+    }
+  } catch (const SimulationError& e) {
+    r.status = "diverged";
+    r.diagnosis = e.what();
+  }
+  r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.steps = sim.steps();
+  if (!desk_rigid) r.peak_shear = peak;
+  for (const auto& it : scene.items) {
+    Vec3 shift;
+    r.tilt.push_back(detail::tilt_of(detail::body_rotation_of(sim, model, it.body, &shift)));
+    r.slide.push_back(std::hypot(shift.x(), shift.y()));
+  }
+  const auto E = sim.energy();
+  r.energy_imbalance = std::abs(E.imbalance()) / E.scale();
+  return r;
+}
+
+Result run_variant(const Variant& v, double duration, double pga) {
+  return v.cg ? run<ConjugateGradientSolver>(v, duration, pga) : run<DirectLdltSolver>(v, duration, pga);
+}
+
+struct Errors {
+  double rms_mm = NAN, peak_mm = NAN, slide_mm = NAN, tilt_deg = NAN, shear_pct = NAN;
+};
+
+Errors compare(const Result& r, const Result& ref) {
+  Errors e;
+  const size_t n = std::min(r.samples.size(), ref.samples.size());
+  if (n == 0 || r.status != "completed") return e;
+  e.rms_mm = 0;
+  e.peak_mm = 0;
+  for (size_t m = 0; m < ref.samples[0].markers.size(); ++m) {
+    double sum2 = 0, peak = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const double d = (r.samples[i].markers[m] - ref.samples[i].markers[m]).norm();
+      sum2 += d * d;
+      peak = std::max(peak, d);
+    }
+    e.rms_mm = std::max(e.rms_mm, 1e3 * std::sqrt(sum2 / double(n)));
+    e.peak_mm = std::max(e.peak_mm, 1e3 * peak);
+  }
+  e.slide_mm = 0;
+  e.tilt_deg = 0;
+  for (size_t i = 0; i < ref.slide.size(); ++i) {
+    e.slide_mm = std::max(e.slide_mm, 1e3 * std::abs(r.slide[i] - ref.slide[i]));
+    e.tilt_deg = std::max(e.tilt_deg, std::abs(r.tilt[i] - ref.tilt[i]));
+  }
+  if (r.peak_shear && ref.peak_shear && *ref.peak_shear > 0)
+    e.shear_pct = 100.0 * std::abs(*r.peak_shear - *ref.peak_shear) / *ref.peak_shear;
+  return e;
+}
+
+std::string fmt(double v, int precision = 3) {
+  if (!std::isfinite(v)) return "-";
+  std::ostringstream o;
+  o.precision(precision);
+  o << v;
+  return o.str();
+}
+
+std::vector<Variant> variants() {
+  std::vector<Variant> v;
+  const Variant d{"default", "default", "default: paper Newmark carry-over, 1 ms, 50 mm, direct/20, full"};
+  v.push_back(d);
+  auto add = [&](std::string name, std::string family, std::string label, auto change) {
+    Variant x = d;
+    x.name = std::move(name);
+    x.family = std::move(family);
+    x.label = std::move(label);
+    change(x);
+    v.push_back(x);
+  };
+  add("element_25mm", "mesh", "element length 25 mm", [](Variant& x) { x.element_length = 0.025; });
+  add("element_100mm", "mesh", "element length 100 mm", [](Variant& x) { x.element_length = 0.1; });
+  add("element_200mm", "mesh", "element length 200 mm", [](Variant& x) { x.element_length = 0.2; });
+  add("grid_0.5", "mesh", "grid scale 0.5", [](Variant& x) { x.grid_scale = 0.5; });
+  add("grid_2", "mesh", "grid scale 2", [](Variant& x) { x.grid_scale = 2.0; });
+  add("dt_0.25ms", "dt", "dt 0.25 ms", [](Variant& x) { x.dt = 2.5e-4; });
+  add("dt_0.5ms", "dt", "dt 0.5 ms", [](Variant& x) { x.dt = 5e-4; });
+  add("dt_2ms", "dt", "dt 2 ms", [](Variant& x) { x.dt = 2e-3; });
+  add("dt_5ms", "dt", "dt 5 ms", [](Variant& x) { x.dt = 5e-3; });
+  add("average_acceleration", "integrator", "average acceleration, carry-over",
+      [](Variant& x) { x.scheme = IntegratorKind::average_acceleration; });
+  add("generalized_alpha", "integrator", "generalized-alpha 0.5, carry-over",
+      [](Variant& x) { x.scheme = IntegratorKind::generalized_alpha; });
+  add("paper_iterate", "integrator", "paper Newmark, iterated", [](Variant& x) { x.iterate = true; });
+  add("average_acceleration_iterate", "integrator", "average acceleration, iterated", [](Variant& x) {
+    x.scheme = IntegratorKind::average_acceleration;
+    x.iterate = true;
+  });
+  add("generalized_alpha_iterate", "integrator", "generalized-alpha 0.5, iterated", [](Variant& x) {
+    x.scheme = IntegratorKind::generalized_alpha;
+    x.iterate = true;
+  });
+  add("cg", "solver", "CG (IC), refresh 20", [](Variant& x) { x.cg = true; });
+  add("direct_refresh_1", "solver", "direct, refresh 1", [](Variant& x) { x.refresh = 1; });
+  add("direct_refresh_100", "solver", "direct, refresh 100", [](Variant& x) { x.refresh = 100; });
+  add("coarse", "fidelity", "fidelity coarse", [](Variant& x) { x.fidelity = Fidelity::coarse; });
+  add("rigid", "fidelity", "fidelity rigid", [](Variant& x) { x.fidelity = Fidelity::rigid; });
+  add("auto", "fidelity", "fidelity auto (desk full, cabinet rigid)", [](Variant& x) { x.fidelity = Fidelity::automatic; });
+  return v;
+}
+
+Variant reference_variant() {
+  Variant r{"reference", "reference", "reference: dt 0.25 ms, grid scale 0.5, 25 mm, direct/1"};
+  r.dt = 2.5e-4;
+  r.grid_scale = 0.5;
+  r.element_length = 0.025;
+  r.refresh = 1;
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  namespace fs = std::filesystem;
+  std::string docs = "docs", only;
+  double duration = 3.0, pga = 3.0;
+  bool list = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "%s needs a value\n", a.c_str());
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--docs") docs = next();
+    else if (a == "--duration") duration = std::stod(next());
+    else if (a == "--pga") pga = std::stod(next());
+    else if (a == "--only") only = "," + next() + ",";
+    else if (a == "--list") list = true;
+    else {
+      std::fprintf(stderr, "usage: speed_vs_error [--docs DIR] [--duration S] [--pga M_S2] [--only a,b] [--list]\n");
+      return 2;
+    }
+  }
+  const auto all = variants();
+  if (list) {
+    for (const auto& v : all) std::printf("%-30s %-10s %s\n", v.name.c_str(), v.family.c_str(), v.label.c_str());
+    return 0;
+  }
+  const bool partial = !only.empty();
+  std::printf("speed vs error: %g s of synthetic 3-D motion (pga %g m/s^2), tall cabinet + desk\n", duration, pga);
+  const Variant refv = reference_variant();
+  std::printf("reference (%s)...\n", refv.label.c_str());
+  std::fflush(stdout);
+  const Result ref = run_variant(refv, duration, pga);
+  std::printf("  %s, %d elements, %.1f s wall, energy imbalance %.3g; slide %.1f / %.1f mm, tilt %.2f / %.2f deg, "
+              "peak |Q| %s N\n",
+              ref.status.c_str(), ref.elements, ref.wall, ref.energy_imbalance, 1e3 * ref.slide[0], 1e3 * ref.slide[1],
+              ref.tilt[0], ref.tilt[1], ref.peak_shear ? fmt(*ref.peak_shear).c_str() : "-");
+  if (ref.status != "completed") {
+    std::fprintf(stderr, "the reference did not complete: %s\n", ref.diagnosis.c_str());
+    return 1;
+  }
+  struct Row {
+    Variant v;
+    Result r;
+    Errors e;
+  };
+  std::vector<Row> rows;
+  for (const auto& v : all) {
+    if (partial && only.find("," + v.name + ",") == std::string::npos) continue;
+    std::printf("%-30s ", v.name.c_str());
+    std::fflush(stdout);
+    Row row{v, run_variant(v, duration, pga), {}};
+    row.e = compare(row.r, ref);
+    std::printf("%-9s %5d el  %7.1f s  rms %7s mm  peak %7s mm  slide %7s mm  tilt %6s deg  shear %6s %%  imbalance %.3g\n",
+                row.r.status.c_str(), row.r.elements, row.r.wall, fmt(row.e.rms_mm).c_str(), fmt(row.e.peak_mm).c_str(),
+                fmt(row.e.slide_mm).c_str(), fmt(row.e.tilt_deg).c_str(), fmt(row.e.shear_pct).c_str(),
+                row.r.energy_imbalance);
+    if (!row.r.diagnosis.empty()) std::printf("    %s\n", row.r.diagnosis.c_str());
+    std::fflush(stdout);
+    rows.push_back(std::move(row));
+  }
+  if (partial) return 0;  // a subset: no files
+
+  fs::create_directories(fs::path(docs) / "figures");
+  {
+    std::ofstream csv(fs::path(docs) / "speed_vs_error.csv");
+    csv << "name,family,label,dt_s,element_length_m,grid_scale,integrator,iterate,solver,refresh,fidelity,status,"
+           "elements,steps,wall_s,marker_rms_mm,marker_peak_mm,slide_err_mm,tilt_err_deg,peak_shear_err_pct,"
+           "energy_imbalance\n";
+    auto line = [&](const Variant& v, const Result& r, const Errors& e) {
+      const char* scheme = v.scheme == IntegratorKind::paper_newmark          ? "paper_newmark"
+                           : v.scheme == IntegratorKind::average_acceleration ? "average_acceleration"
+                                                                              : "generalized_alpha";
+      csv << v.name << ',' << v.family << ",\"" << v.label << "\"," << v.dt << ',' << v.element_length << ','
+          << v.grid_scale << ',' << scheme << ',' << (v.iterate ? 1 : 0) << ',' << (v.cg ? "cg" : "direct") << ','
+          << v.refresh << ',' << to_string(v.fidelity) << ',' << r.status << ',' << r.elements << ',' << r.steps << ','
+          << r.wall << ',' << fmt(e.rms_mm, 6) << ',' << fmt(e.peak_mm, 6) << ',' << fmt(e.slide_mm, 6) << ','
+          << fmt(e.tilt_deg, 6) << ',' << fmt(e.shear_pct, 6) << ',' << r.energy_imbalance << '\n';
+    };
+    line(refv, ref, Errors{0, 0, 0, 0, 0});
+    for (const auto& row : rows) line(row.v, row.r, row.e);
+  }
+  {
+    std::ofstream md(fs::path(docs) / "speed_vs_error.md");
+    md << "| variant | family | elements | wall (s) | x default | marker RMS (mm) | marker peak (mm) | slide (mm) | "
+          "tilt (deg) | peak shear (%) | energy imbalance |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    double wall_default = 0;
+    for (const auto& row : rows)
+      if (row.v.name == "default") wall_default = row.r.wall;
+    md << "| " << refv.label << " | reference | " << ref.elements << " | " << fmt(ref.wall) << " | "
+       << (wall_default > 0 ? fmt(ref.wall / wall_default, 2) : "-") << " | 0 | 0 | 0 | 0 | 0 | "
+       << fmt(ref.energy_imbalance, 2) << " |\n";
+    for (const auto& row : rows)
+      md << "| " << row.v.label << (row.r.status != "completed" ? " (" + row.r.status + ")" : "") << " | "
+         << row.v.family << " | " << row.r.elements << " | " << fmt(row.r.wall) << " | "
+         << (wall_default > 0 ? fmt(row.r.wall / wall_default, 2) : "-") << " | " << fmt(row.e.rms_mm) << " | "
+         << fmt(row.e.peak_mm) << " | " << fmt(row.e.slide_mm) << " | " << fmt(row.e.tilt_deg, 2) << " | "
+         << fmt(row.e.shear_pct) << " | " << fmt(row.r.energy_imbalance, 2) << " |\n";
+  }
+  {
+    ScatterPlot p;
+    p.title("Speed against error: tall cabinet + desk, " + fmt(duration) + " s synthetic 3-D, pga " + fmt(pga) +
+            " m/s^2")
+        .xlabel("wall time (s, one thread)")
+        .ylabel("marker displacement RMS error (mm)")
+        .log_x()
+        .log_y()
+        .show_pareto_front();
+    std::vector<std::string> names;
+    for (const auto& row : rows)
+      if (std::isfinite(row.e.rms_mm) && row.e.rms_mm > 0) {
+        p.add(row.r.wall, row.e.rms_mm, row.v.name == "default" ? "default" : "", row.v.family);
+        names.push_back(row.v.name);
+      }
+    p.save_png((fs::path(docs) / "figures" / "speed_vs_error.png").string(), 900, 560);
+    std::printf("Pareto front:");
+    for (std::size_t i : p.front()) std::printf(" %s", names[i].c_str());
+    std::printf("\n");
+  }
+  std::printf("wrote %s/speed_vs_error.csv, %s/speed_vs_error.md, %s/figures/speed_vs_error.png\n", docs.c_str(),
+              docs.c_str(), docs.c_str());
+  return 0;
+}
