@@ -22,7 +22,8 @@
 // <docs>/figures/speed_vs_error.png (wall time against marker RMS error, log-log, Pareto front).
 //   cd /work/main && nice -n 10 ./build/bench/speed_vs_error            # ~15-25 min on one core
 //   ./build/bench/speed_vs_error --only default,dt_5ms --duration 1     # a subset, for a quick look
-// Options: --docs DIR (default docs), --duration S (3), --pga M_S2 (3.0), --only a,b,c, --list.
+// Options: --docs DIR (default docs), --duration S (3), --pga M_S2 (3.0), --only a,b,c, --list,
+// --no-reference (the variants' own final states only).
 #include <furniture_fem/plot.hpp>
 #include <furniture_fem/scene_runner.hpp>
 
@@ -261,7 +262,7 @@ int main(int argc, char** argv) {
   namespace fs = std::filesystem;
   std::string docs = "docs", only;
   double duration = 3.0, pga = 3.0;
-  bool list = false;
+  bool list = false, no_reference = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -276,8 +277,9 @@ int main(int argc, char** argv) {
     else if (a == "--pga") pga = std::stod(next());
     else if (a == "--only") only = "," + next() + ",";
     else if (a == "--list") list = true;
+    else if (a == "--no-reference") no_reference = true;
     else {
-      std::fprintf(stderr, "usage: speed_vs_error [--docs DIR] [--duration S] [--pga M_S2] [--only a,b] [--list]\n");
+      std::fprintf(stderr, "usage: speed_vs_error [--docs DIR] [--duration S] [--pga M_S2] [--only a,b] [--list] [--no-reference]\n");
       return 2;
     }
   }
@@ -287,6 +289,17 @@ int main(int argc, char** argv) {
     return 0;
   }
   const bool partial = !only.empty();
+  if (no_reference) {  // the variants' own results, no errors (to choose the scene)
+    for (const auto& v : all) {
+      if (partial && only.find("," + v.name + ",") == std::string::npos) continue;
+      const Result r = run_variant(v, duration, pga);
+      std::printf("%-30s %-9s %5d el %7.1f s  slide %.1f / %.1f mm  tilt %.2f / %.2f deg  peak |Q| %s N  imbalance %.3g\n",
+                  v.name.c_str(), r.status.c_str(), r.elements, r.wall, 1e3 * r.slide[0], 1e3 * r.slide[1], r.tilt[0],
+                  r.tilt[1], r.peak_shear ? fmt(*r.peak_shear).c_str() : "-", r.energy_imbalance);
+      std::fflush(stdout);
+    }
+    return 0;
+  }
   std::printf("speed vs error: %g s of synthetic 3-D motion (pga %g m/s^2), tall cabinet + desk\n", duration, pga);
   const Variant refv = reference_variant();
   std::printf("reference (%s)...\n", refv.label.c_str());
