@@ -184,7 +184,9 @@ double mean_z(const Sim& sim, const std::vector<int>& nodes) {
 
 // Contact forces of the current state, evaluated through the simulation's own contact policy, one
 // 6-vector per node (forces, then moments). Calling add_forces outside a step is harmless: the
-// policy restarts every evaluation from its committed history and only commit() advances it.
+// policy restarts every evaluation from its committed history and only commit() advances it. (A
+// stick-slip spring is evaluated one more v dt on from its committed state: a valid evaluation of
+// the law, not necessarily the force the last step applied.)
 template <class Sim>
 Eigen::VectorXd contact_force_vector(Sim& sim) {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(6 * sim.model().num_nodes());

@@ -40,8 +40,9 @@ struct PulseResult {
 // and the regularisation's own error, the friction missing while the block passes through
 // |v| < v_reg at the start, is about mu v_reg / A x (the sliding time) = 1.5 mm (1%).
 template <class Law>
-PulseResult run_pulse(const Law& law, const std::function<void(ContactParams&, const Box&)>& tune = {}) {
-  const double dt = 2e-4, v_reg = 5e-3;
+PulseResult run_pulse(const Law& law, const std::function<void(ContactParams&, const Box&)>& tune = {},
+                      bool rigid = true, double v_reg = 5e-3) {
+  const double dt = 2e-4;
   BlockScene<Law> s(
       BoxSpec{},
       [&](const Box& b) {
@@ -49,7 +50,7 @@ PulseResult run_pulse(const Law& law, const std::function<void(ContactParams&, c
         if (tune) tune(p, b);
         return p;
       },
-      true, options_dt(dt), paper_newmark, law);
+      rigid, options_dt(dt), paper_newmark, law);
   s.sim->run_until(0.5);  // settle from first touch
   const double ts = s.sim->time(), x0 = s.com().x();
   // The table acceleration is sampled at the end of each step: the steps ending in (ts, ts + t0]
@@ -100,7 +101,28 @@ TEST_CASE("a rectangular pulse leaves the residual slip V^2/(2 mu g) (1 - mu/A)"
   CHECK_THAT(a.slip, WithinRel(closed, 0.03));    // the brief's 3%; +0.6% measured (regularisation)
   CHECK(a.speed_after < 1e-3);                    // back at rest on the table (creep of the tilt only)
   CHECK_THAT(b.slip, WithinRel(closed, 0.05));    // +3.4% measured, explained by the next line
-  CHECK_THAT(b.slip, WithinRel(closed_b, 0.015)); // +0.9% measured
+  CHECK_THAT(b.slip, WithinRel(closed_b, 0.015)); // +0.3% measured
+}
+
+TEST_CASE("the finite-element block slides like the rigid block", "[contact_dynamics][pulse]") {
+  // The same pulse on the box frame as a finite-element body. Its bottom nodes each carry W/28 on
+  // 0.12 kg, 2.9 times g per unit mass, so the explicit-damping limit per node is 2.9 times the
+  // rigid block's: about 9 mm/s at dt 0.2 ms (resting_and_sliding.cpp). v_reg = 12 mm/s for both
+  // bodies here. Below that limit the frame chatters and its slip is off by several percent (with
+  // the paper's law as written at v_reg = 5 mm/s the chattering frame slid 5.5% less than the rigid
+  // block).
+  PaperLaw law;
+  law.friction_part().normal = FrictionNormal::total;
+  const PulseResult fe = run_pulse(law, {}, false, 12e-3);
+  const PulseResult rigid = run_pulse(law, {}, true, 12e-3);
+  const double closed = pulse_closed_form(pulse_mu);
+  report("T3 pulse, v_reg 12 mm/s: FE block slip %.5f m, rigid block %.5f m (FE / rigid - 1 = %.2e), closed form %.5f m "
+         "(FE %+.2f%%)",
+         fe.slip, rigid.slip, fe.slip / rigid.slip - 1, closed, 100 * (fe.slip / closed - 1));
+  CHECK_THAT(fe.slip, WithinRel(rigid.slip, 5e-3));  // the frame's flexibility: 3e-4 measured
+  // The regularisation's share grows with v_reg (at most mu v_reg / A x 0.5 s = 3.6 mm, 2.4%):
+  // +1.6% measured.
+  CHECK_THAT(fe.slip, WithinRel(closed, 0.04));
 }
 
 TEST_CASE("two laws on one scene: the pulse with the paper law and the alternatives", "[contact_dynamics][pulse][laws]") {
@@ -232,7 +254,7 @@ TEST_CASE("a tall block starts to rock at a table acceleration g b/h, and not be
       report("T4 rocking ramp, alpha = %.0f W: onset a / (g b/h) = %.5f, / corrected closed form (1 - %.4f) = %.5f",
              alpha_over_weight, rigid_form, c.correction, corrected);
       // The corrected form within 1% (the ramp's lag behind the quasi-static state and the
-      // lean's second-order terms: 0.1-0.3% measured); the rigid form within the brief's 3% only when
+      // lean's second-order terms: 0.05-0.3% measured); the rigid form within the brief's 3% only when
       // the penalty is stiff enough.
       CHECK_THAT(corrected, WithinAbs(1.0, 0.01));
       if (alpha_over_weight >= 10) CHECK_THAT(rigid_form, WithinAbs(1.0, 0.03));

@@ -99,6 +99,33 @@ TEST_CASE("the explicit contact damping is stable exactly below its closed-form 
       CHECK((last < 1e-9 || last < 0.5 * before));
     }
   }
+  // A finite-element body: each node is its own mass, and at small dt its beams add little to the
+  // effective mass of the implicit step (K beta dt^2). A bottom node carries alpha g_i = W/28 on
+  // m_i = 0.12 kg, so its dashpot Dc g_i / v_reg needs v_reg > (1 + 2 gamma)/2 * 1.2 (W/28)/m_i dt:
+  // 9.0 mm/s at dt = 0.2 ms (the beams lower it a little: measured between 8.0 and 8.5 mm/s).
+  for (const double factor : {0.85, 1.15}) {
+    const double dt = 2e-4;
+    double v_crit = 0;
+    BlockScene<PaperLaw> s(
+        BoxSpec{},
+        [&](const Box& b) {
+          const double m_node = elastic_steel().rho * tube().A * 0.05;  // two half elements of 50 mm
+          const double load_per_mass = b.mass * g0 / double(b.bottom.size()) / m_node;
+          v_crit = critical_v_reg(1.2 * load_per_mass / g0, dt, paper_gamma);
+          return paper_params(b.mass, 0.3, factor * v_crit);
+        },
+        false, options_dt(dt), paper_newmark);
+    double last = 0;
+    s.sim->run_until(2.0, [&](const auto& sim, const StepInfo&) {
+      if (sim.time() > 1.5) last = std::max(last, max_speed(sim, s.box.body));
+    });
+    report("T1b stability, FE block: dt 2e-4 s, v_reg = %.2f x %.5f m/s (per-node estimate): max speed in the last 0.5 s "
+           "%.2e m/s",
+           factor, v_crit, last);
+    // Chattering: 2.3 mm/s; stable: round-off. 15% margins: the estimate neglects the beams.
+    if (factor < 1) CHECK(last > 1e-4);
+    else CHECK(last < 1e-6);
+  }
   // The paper's settings (dt 1 ms, v_reg 1 mm/s, the scene files' default) are 16x below the limit:
   // the block never settles.
   BlockScene<PaperLaw> s(BoxSpec{}, [&](const Box& b) { return paper_params(b.mass, 0.3, 1e-3); }, true,
@@ -156,7 +183,7 @@ TEST_CASE("sliding starts at mu g: sticks at 0.97 mu g, slides at 1.03 mu g", "[
         CHECK(std::abs(v_end) < 1e-5);
       } else {
         CHECK(x_end < -0.1);                        // 0.18 m: sliding
-        CHECK_THAT(v_end, Catch::Matchers::WithinRel(v_closed, 0.03));  // 0.8% measured
+        CHECK_THAT(v_end, Catch::Matchers::WithinRel(v_closed, 0.03));  // 0.1% measured
       }
     }
   }
