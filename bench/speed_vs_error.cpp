@@ -3,8 +3,10 @@
 // 3-D motion), measured against a converged reference (dt = 0.25 ms, panel grids halved and 25 mm
 // elements, paper Newmark carry-over, direct solver refreshed every step).
 //
-// Families (each point changes one thing from the default: paper Newmark carry-over, dt = 1 ms,
-// 50 mm elements on the tuned grids, direct LDL^T refreshed every 20 steps, full fidelity):
+// Families (each point changes one thing from the default: ASI-Gauss elements, paper Newmark
+// carry-over, dt = 1 ms, 50 mm elements on the tuned grids, direct LDL^T refreshed every 20 steps,
+// full fidelity):
+//   element     conventional one-point Timoshenko (s = 0), cubic Euler-Bernoulli (elastic reference)
 //   mesh        element_length 0.025 / 0.1 / 0.2 m, grid_scale 0.5 / 2
 //   dt          0.25 / 0.5 / 2 / 5 ms
 //   integrator  average acceleration, generalized-alpha (rho_inf 0.5); each also iterated to
@@ -41,6 +43,8 @@
 namespace {
 using namespace furniture_fem;
 
+enum class ElementChoice { asi_gauss, conventional, cubic_euler_bernoulli };
+
 struct Variant {
   std::string name, family, label;
   double dt = 1e-3;
@@ -50,6 +54,7 @@ struct Variant {
   bool cg = false;
   int refresh = 20;
   Fidelity fidelity = Fidelity::full;
+  ElementChoice element = ElementChoice::asi_gauss;
 };
 
 struct Sample {
@@ -111,12 +116,12 @@ SceneSpec scene_for(const Variant& v, double duration, double pga) {
   return s;
 }
 
-template <class Solver>
+template <class Solver, class Element>
 Result run(const Variant& v, double duration, double pga) {
   const SceneSpec spec = scene_for(v, duration, pga);
   Result r;
   const auto t0 = std::chrono::steady_clock::now();
-  SceneSimulation<PaperAnisotropicFloorLaw, Solver> scene(spec, v.refresh, 1);
+  SceneSimulation<PaperAnisotropicFloorLaw, Solver, Element> scene(spec, v.refresh, 1);
   auto& sim = *scene.sim;
   const Model& model = *scene.model;
   r.elements = model.num_elements();
@@ -162,7 +167,12 @@ Result run(const Variant& v, double duration, double pga) {
 }
 
 Result run_variant(const Variant& v, double duration, double pga) {
-  return v.cg ? run<ConjugateGradientSolver>(v, duration, pga) : run<DirectLdltSolver>(v, duration, pga);
+  if (v.cg) return run<ConjugateGradientSolver, AsiGaussTimoshenko>(v, duration, pga);
+  switch (v.element) {
+    case ElementChoice::conventional: return run<DirectLdltSolver, ConventionalTimoshenko>(v, duration, pga);
+    case ElementChoice::cubic_euler_bernoulli: return run<DirectLdltSolver, CubicEulerBernoulli>(v, duration, pga);
+    default: return run<DirectLdltSolver, AsiGaussTimoshenko>(v, duration, pga);
+  }
 }
 
 struct Errors {
@@ -216,6 +226,10 @@ std::vector<Variant> variants() {
     change(x);
     v.push_back(x);
   };
+  add("element_conventional", "element", "conventional one-point Timoshenko (s = 0)",
+      [](Variant& x) { x.element = ElementChoice::conventional; });
+  add("element_cubic_eb", "element", "cubic Euler-Bernoulli (reference element, elastic)",
+      [](Variant& x) { x.element = ElementChoice::cubic_euler_bernoulli; });
   add("element_25mm", "mesh", "element length 25 mm", [](Variant& x) { x.element_length = 0.025; });
   add("element_100mm", "mesh", "element length 100 mm", [](Variant& x) { x.element_length = 0.1; });
   add("element_200mm", "mesh", "element length 200 mm", [](Variant& x) { x.element_length = 0.2; });
@@ -338,14 +352,17 @@ int main(int argc, char** argv) {
   fs::create_directories(fs::path(docs) / "figures");
   {
     std::ofstream csv(fs::path(docs) / "speed_vs_error.csv");
-    csv << "name,family,label,dt_s,element_length_m,grid_scale,integrator,iterate,solver,refresh,fidelity,status,"
+    csv << "name,family,label,element,dt_s,element_length_m,grid_scale,integrator,iterate,solver,refresh,fidelity,status,"
            "elements,steps,wall_s,marker_rms_mm,marker_peak_mm,slide_err_mm,tilt_err_deg,peak_shear_err_pct,"
            "energy_imbalance\n";
     auto line = [&](const Variant& v, const Result& r, const Errors& e) {
       const char* scheme = v.scheme == IntegratorKind::paper_newmark          ? "paper_newmark"
                            : v.scheme == IntegratorKind::average_acceleration ? "average_acceleration"
                                                                               : "generalized_alpha";
-      csv << v.name << ',' << v.family << ",\"" << v.label << "\"," << v.dt << ',' << v.element_length << ','
+      const char* element = v.element == ElementChoice::conventional            ? "conventional"
+                            : v.element == ElementChoice::cubic_euler_bernoulli ? "cubic_euler_bernoulli"
+                                                                                : "asi_gauss";
+      csv << v.name << ',' << v.family << ",\"" << v.label << "\"," << element << ',' << v.dt << ',' << v.element_length << ','
           << v.grid_scale << ',' << scheme << ',' << (v.iterate ? 1 : 0) << ',' << (v.cg ? "cg" : "direct") << ','
           << v.refresh << ',' << to_string(v.fidelity) << ',' << r.status << ',' << r.elements << ',' << r.steps << ','
           << r.wall << ',' << fmt(e.rms_mm, 6) << ',' << fmt(e.peak_mm, 6) << ',' << fmt(e.slide_mm, 6) << ','

@@ -119,7 +119,7 @@ void case_panels(const fs::path& results, int k, const std::string& col, const s
   }
   if (n == 0) return;
   p.save_png(png.string(), 1000, 250 + 220 * n);
-  std::printf("wrote %s\n", png.string().c_str());
+  std::fprintf(stderr, "wrote %s\n", png.string().c_str());
 }
 
 }  // namespace
@@ -170,6 +170,10 @@ int main(int argc, char** argv) {
         std::string s = it.at("item").get<std::string>() + ": " + it.at("state").get<std::string>();
         s += " (slide " + fmt(it.at("slide_m").get<double>()) + " m, tilt " + fmt(it.at("tilt_deg").get<double>(), "%.0f") +
              " deg";
+        // The largest tilt on the way shows a fall that ended upright (runs before "fell" existed).
+        if (it.contains("max_tilt_deg") && it.at("max_tilt_deg").get<double>() > 60 &&
+            it.at("tilt_deg").get<double>() <= 60)
+          s += ", max tilt " + fmt(it.at("max_tilt_deg").get<double>(), "%.0f") + " deg";
         if (!it.at("resting_on").get<std::string>().empty()) s += ", on " + it.at("resting_on").get<std::string>();
         s += ")";
         states += (states.empty() ? "" : "; ") + s;
@@ -250,7 +254,7 @@ int main(int argc, char** argv) {
         p.add(s->column("t"), s->column(pre + "_Qz"), "", 0);
         p.add(s->column("t"), s->column(pre + "_Qy"), "", 1);
         p.save_png((results / "fig19_desk_shear.png").string(), 1000, 650);
-        std::printf("wrote %s\n", (results / "fig19_desk_shear.png").string().c_str());
+        std::fprintf(stderr, "wrote %s\n", (results / "fig19_desk_shear.png").string().c_str());
       }
     }
     return 0;

@@ -53,7 +53,9 @@ struct RunOptions {
 
 struct ItemFinalState {
   std::string name;
-  std::string state;          // standing, slid, tilted, overturned, resting_on_item
+  std::string state;          // standing, slid, tilted, fell, overturned, resting_on_item
+                              // (fell: upright again at the end, but it tipped past 60 degrees or came
+                              // down more than 5 cm on the way, e.g. off the item it stood on)
   double slide = 0;           // horizontal displacement of the centre of gravity (m)
   double tilt_deg = 0;        // angle of the item's vertical axis from the vertical
   double max_tilt_deg = 0;    // during the run
@@ -272,10 +274,11 @@ inline std::string energy_creation_diagnosis(const EnergyLedger& E, double dt, d
 // A scene turned into a composed solver: the model, its items, the table motion and the simulation
 // (owned here so the model outlives the simulation that refers to it). Fidelity per item: "rigid"
 // items are solved as rigid bodies; "auto" items are rigid unless the scene asks for their sectional
-// forces (model only what the scene needs); "full" and "coarse" are finite-element bodies.
-template <class Law, class Solver>
+// forces (model only what the scene needs); "full" and "coarse" are finite-element bodies. The element
+// policy is a compile-time choice (the scene file always means ASI-Gauss; studies swap it here).
+template <class Law, class Solver, class Element = AsiGaussTimoshenko>
 struct SceneSimulation {
-  using Sim = Simulation<AsiGaussTimoshenko, RuntimeIntegrator, Solver, RoomContact<Law>>;
+  using Sim = Simulation<Element, RuntimeIntegrator, Solver, RoomContact<Law>>;
   std::unique_ptr<Model> model = std::make_unique<Model>();
   std::vector<ItemInfo> items;
   TableMotion motion;
@@ -595,6 +598,7 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt) {
     if (st.tilt_deg > 60) st.state = "overturned";
     else if (!st.resting_on.empty() && (st.tilt_deg > 5 || st.lift > 0.03)) st.state = "resting_on_item";
     else if (st.tilt_deg > 5) st.state = "tilted";
+    else if (st.max_tilt_deg > 60 || st.lift < -0.05) st.state = "fell";
     else if (st.slide > 0.01) st.state = "slid";
     else st.state = "standing";
     sum.items.push_back(st);

@@ -45,6 +45,7 @@ struct SimulationOptions {
   double tolerance = 1e-7;      // residual norm relative to the force scale
   int refresh_interval = 1;     // refresh each body's matrix every N steps (1: every step)
   bool geometric_stiffness = true;
+  bool finite_rotation_update = true;  // put each free body's rigid turn of a step on the finite rotation
   bool check_finite = true;     // stop with a diagnosis on NaN / divergence
   int threads = 1;              // threads over bodies (element forces, solves); 0: all hardware threads
 };
@@ -261,7 +262,10 @@ class Simulation {
                                     non_finite_diagnosis());
     const bool carry = integrator_.mode == EquilibriumMode::carry_over;
     for (int it = 0; it < max_it; ++it) {
-      timed(timings_.solve, [&] { info.refreshed_bodies += solve_bodies(); });
+      timed(timings_.solve, [&] {
+        info.refreshed_bodies += solve_bodies();
+        if (it == 0 && opt_.finite_rotation_update) finite_rotation_update();
+      });
       kinematics();
       timed(timings_.elements, [&] { evaluate_elements(false); });
       if (carry) {
@@ -702,6 +706,47 @@ class Simulation {
       throw SimulationError(t_, "the linear solver failed: the effective matrix is not positive definite or the "
                                 "solution is not finite (an unsupported static model, or a diverging step)");
     return refreshed;
+  }
+
+  // The linear solve moves the nodes of a turning body along tangents: each member stretches by
+  // (w dt)^2 / 2 of its length, a spurious axial force that, carried over, excites the stiff axial
+  // modes, which the integrator then damps: fast rigid rotation loses its energy (docs/theory.md).
+  // Here the rigid part of each free body's increment is put on the finite rotation: with theta the
+  // body's least-squares turn of the increment and c its mass centre at the step's start, every node's
+  // translation gets (exp(theta) - I - [theta]x)(x0 - c), exact for a rigid turn and O(theta^2) for
+  // the rest. Bodies with a fixed DOF (they do not turn freely) and rigid bodies (solved on the finite
+  // rotation already) are left as they are.
+  void finite_rotation_update() {
+    detail::parallel_for(body_order_, opt_.threads, [&](int b) {
+      const auto& bs = systems_[b];
+      if (bs.rigid || bs.nodes.size() < 2) return;
+      for (char f : bs.fixed)
+        if (f) return;
+      Vec3 c = Vec3::Zero(), dc = Vec3::Zero();
+      double m = 0;
+      for (int n : bs.nodes) {
+        c += mass_[6 * n] * x_[n];
+        dc += mass_[6 * n] * Du_.segment<3>(6 * n);
+        m += mass_[6 * n];
+      }
+      c /= m;
+      dc /= m;
+      // The body's rotation increment: the least-squares rigid turn of the translational increments
+      // about the mass centre, J theta = sum m r x (du - dc).
+      Mat3 J = Mat3::Zero();
+      Vec3 h = Vec3::Zero();
+      for (int n : bs.nodes) {
+        const Vec3 r = x_[n] - c;
+        J += mass_[6 * n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
+        h += mass_[6 * n] * r.cross(Du_.segment<3>(6 * n) - dc);
+      }
+      const Eigen::LDLT<Mat3> ldlt(J);
+      if (ldlt.info() != Eigen::Success || ldlt.rcond() < 1e-9) return;  // a straight bar: no unique turn
+      const Vec3 theta = ldlt.solve(h);
+      if (!theta.allFinite() || theta.norm() < 1e-12) return;
+      const Mat3 C = detail::rotation_exp(theta) - Mat3::Identity() - detail::skew(theta);
+      for (int n : bs.nodes) Du_.segment<3>(6 * n) += C * (x_[n] - c);
+    });
   }
 
   Vec3 mass_centre(const detail::BodySystem& bs) const {

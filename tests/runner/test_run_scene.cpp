@@ -162,7 +162,7 @@ json check_outputs(const std::string& out, const SceneSpec& spec, bool expect_fi
   CHECK(fin.size() == bodies);
   for (const auto& it : fin) {
     CHECK(it.at("item").is_string());
-    CHECK(std::set<std::string>{"standing", "slid", "tilted", "overturned", "resting_on_item"}.count(
+    CHECK(std::set<std::string>{"standing", "slid", "tilted", "fell", "overturned", "resting_on_item"}.count(
               it.at("state").get<std::string>()) == 1);
     CHECK(std::isfinite(it.at("slide_m").get<double>()));
     CHECK(std::isfinite(it.at("tilt_deg").get<double>()));
