@@ -1,7 +1,7 @@
 // Per-step cost of the paper's configurations 1, 2 and 3 (built-in synthetic 3-D motion, dt = 1 ms),
 // and of 2, 4 and 8 copies of configuration 3 side by side (scaling), with the time split into
-// element forces, contact (broad + narrow phase + law), linear solve (incl. factorisations) and the
-// rest. Counters: ms per step of each phase, elements, bodies.
+// element forces, contact (nodes against floor and walls, broad phase, narrow phase with the law),
+// linear solve (incl. assembly and factorisations) and the rest. Counters: ms per step of each phase.
 //   ./build/bench/bench_scenes --benchmark_min_time=2 --benchmark_repetitions=3
 //                              --benchmark_report_aggregates_only=true
 // The end-to-end figure (configuration 3, 10 s of 3-D input, every item at full ASI-Gauss fidelity)
@@ -43,13 +43,19 @@ void run_steps(benchmark::State& state, const SceneSpec& spec, int refresh) {
   auto& sim = *scene.sim;
   for (int i = 0; i < 20; ++i) sim.step();  // settle, first factorisations
   const StepTimings t0 = sim.timings();
+  const auto c0 = sim.contact_model().timings();
   const long s0 = sim.steps();
   for (auto _ : state) sim.step();
   const StepTimings t = sim.timings();
+  const auto c = sim.contact_model().timings();
   const double n = double(sim.steps() - s0);
   state.counters["elements"] = scene.model->num_elements();
   state.counters["ms_elements"] = 1e3 * (t.elements - t0.elements) / n;
   state.counters["ms_contact"] = 1e3 * (t.contact - t0.contact) / n;
+  // The contact's parts: nodes against floor and walls, broad phase, narrow phase with the law.
+  state.counters["ms_planes"] = 1e3 * (c.planes - c0.planes) / n;
+  state.counters["ms_broad"] = 1e3 * (c.broad - c0.broad) / n;
+  state.counters["ms_narrow_law"] = 1e3 * (c.pairs - c0.pairs) / n;
   state.counters["ms_solve"] = 1e3 * (t.solve - t0.solve) / n;
   state.counters["ms_factorize"] = 1e3 * (t.factorize - t0.factorize) / n;
   state.counters["ms_other"] = 1e3 * (t.other() - t0.other()) / n;

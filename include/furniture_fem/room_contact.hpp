@@ -15,6 +15,7 @@
 // mu against walls); between two items the paper's mu between furniture applies, with alpha and Dc
 // the mean of the two items' values (the paper leaves this open; docs/contact.md).
 #include <Eigen/Core>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <unordered_map>
@@ -102,7 +103,20 @@ class RoomContact {
   }
   void add_obstacle(MeshObstacle obstacle) { obstacles_.push_back(std::move(obstacle)); }
 
+  // Seconds spent, accumulated over every evaluation: nodes against planes, the broad phase (boxes
+  // and candidate pairs, when it re-runs), the narrow phase with the law on the candidates, and
+  // nodes against mesh obstacles.
+  struct Timings {
+    double planes = 0, broad = 0, pairs = 0, obstacles = 0;
+  };
+  const Timings& timings() const { return timings_; }
+
   void add_forces(const ContactView& view, Eigen::VectorXd& f) {
+    using clock = std::chrono::steady_clock;
+    const auto seconds_since = [](clock::time_point t0) {
+      return std::chrono::duration<double>(clock::now() - t0).count();
+    };
+    const auto t_planes = clock::now();
     const Model& model = view.model;
     pair_forces_.clear();
     pair_trial_.clear();
@@ -140,8 +154,13 @@ class RoomContact {
         ++active_;
       }
     }
+    timings_.planes += seconds_since(t_planes);
     if (item_contact && model.num_bodies() > 1) element_contacts(view, f);
-    if (!obstacles_.empty()) obstacle_contacts(view, f);
+    if (!obstacles_.empty()) {
+      const auto t_obstacles = clock::now();
+      obstacle_contacts(view, f);
+      timings_.obstacles += seconds_since(t_obstacles);
+    }
   }
 
   void commit() {
@@ -185,6 +204,7 @@ class RoomContact {
       const double limit2 = 0.25 * margin * margin;
       for (size_t n = 0; n < view.x.size() && !rerun; ++n) rerun = (view.x[n] - x_broad_[n]).squaredNorm() > limit2;
     }
+    const auto t_broad = std::chrono::steady_clock::now();
     if (rerun) {
       x_broad_ = view.x;
       std::vector<ElementBox> boxes;
@@ -197,6 +217,13 @@ class RoomContact {
       broad_phase_.pairs(boxes, candidates_);
       ++broad_runs_;
     }
+    const auto t_pairs = std::chrono::steady_clock::now();
+    timings_.broad += std::chrono::duration<double>(t_pairs - t_broad).count();
+    struct AddPairs {  // on every way out of the loop
+      Timings& t;
+      std::chrono::steady_clock::time_point t0;
+      ~AddPairs() { t.pairs += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); }
+    } add_pairs{timings_, t_pairs};
     for (const auto& [ea, eb] : candidates_) {
       const auto& A = model.elements()[ea];
       const auto& B = model.elements()[eb];
@@ -288,6 +315,7 @@ class RoomContact {
   std::vector<std::pair<int, int>> candidates_;
   std::vector<PairForce> pair_forces_;
   std::vector<Vec3> x_broad_;  // node positions at the last broad phase
+  Timings timings_;
   long steps_ = 0, broad_runs_ = 0;
   int active_ = 0;
 };

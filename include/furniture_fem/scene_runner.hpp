@@ -11,6 +11,7 @@
 // the requested sectional forces). A stop request (Ctrl-C) or a diverging step ends the run early with
 // everything written so far readable and the reason in the summary.
 #include <Eigen/Core>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -49,6 +50,10 @@ struct RunOptions {
   // (the contact laws only store and dissipate energy, the integrators only dissipate; checked at
   // every output row). 0: never. See energy_creation_diagnosis().
   double energy_creation_limit = 0.25;
+  // A run that completes having lost more than this fraction of the ledger's scale (impacts with the
+  // carried-over penalty contact, or a time step too long for the penalty) is kept, but its summary's
+  // diagnosis warns that the energy ledger does not close. See energy_loss_warning().
+  double energy_loss_warning = 0.15;
 };
 
 struct ItemFinalState {
@@ -66,7 +71,7 @@ struct ItemFinalState {
 
 struct RunSummary {
   std::string status = "completed";  // completed, stopped, diverged
-  std::string diagnosis;
+  std::string diagnosis;             // why it stopped; for a completed run, empty or an energy-loss warning
   double t_end = 0, duration = 0;
   long steps = 0;
   double wall_seconds = 0;
@@ -269,6 +274,25 @@ inline std::string energy_creation_diagnosis(const EnergyLedger& E, double dt, d
            "'): items starting interpenetrated (the penalty releases the energy stored in the overlap) are the "
            "likely cause; check the placement, or reduce dt or the penalty alpha_kgf.";
   return why;
+}
+
+// The warning a completed run carries when the ledger lost more than `limit` of its scale; empty if not.
+inline std::string energy_loss_warning(const EnergyLedger& E, double dt, double limit, const ContactStepEstimate& est) {
+  const double scale = E.scale(), imbalance = E.imbalance();
+  if (!(limit > 0) || !(-imbalance > limit * scale)) return {};
+  std::ostringstream o;
+  o.precision(3);
+  o << "warning: the energy ledger does not close: " << -imbalance << " J (" << 100 * -imbalance / scale
+    << " % of its scale, " << scale << " J) lost beyond what contact, damping and plastic hinges account for, "
+    << "more than the " << 100 * limit << " % (RunOptions::energy_loss_warning) a trusted run may lose. ";
+  if (dt > est.dt)
+    o << "The contact penalty is too stiff for the time step: dt = " << 1e3 * dt
+      << " ms exceeds the explicit contact's stable step, estimated at " << 1e3 * est.dt << " ms for item '" << est.item
+      << "'; reduce dt or the penalty alpha_kgf.";
+  else
+    o << "Impacts (items landing or striking each other) lose energy with the carried-over penalty contact at "
+         "this dt (docs/performance.md, stability); a smaller dt reduces the loss.";
+  return o.str();
 }
 
 // A scene turned into a composed solver: the model, its items, the table motion and the simulation
@@ -489,6 +513,12 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt) {
   std::vector<double> th;
   std::vector<std::vector<double>> mh(markers.size() * 3), sh(sections.size() * 2);
   std::vector<double> max_tilt(model.num_bodies(), 0.0);
+  // Item-item vertical contact forces summed over the output rows of the run's last 0.5 s: what an
+  // item rests on is judged from their mean, not from one step of a contact that may be chattering.
+  const double t_end = opt.duration.value_or(spec.duration);
+  const double settle_from = t_end - 0.5;
+  std::map<std::pair<int, int>, double> settle_fz_on_a;
+  int settle_rows = 0;
 
   const ContactStepEstimate step_estimate =
       contact_step_estimate(sim, model, items, scene_body_contacts(spec, model, items));
@@ -521,10 +551,38 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt) {
     energy_csv.row({t, E.kinetic, E.strain, E.gravity_potential, E.external_work, E.contact_work, E.damping_work,
                     E.plastic_work, E.imbalance()});
     if (s.steps() > 0) sum.max_energy_imbalance = std::max(sum.max_energy_imbalance, std::abs(E.imbalance()) / E.scale());
-    for (const auto& pf : s.contact_model().pair_forces())
+    const bool settling = t >= settle_from - 1e-9;
+    settle_rows += settling;
+    for (const auto& pf : s.contact_model().pair_forces()) {
       contact_csv.row({t, double(pf.body_a), double(pf.body_b), pf.force_on_a.x(), pf.force_on_a.y(), pf.force_on_a.z()});
+      if (settling && pf.body_a >= 0 && pf.body_b >= 0) settle_fz_on_a[{pf.body_a, pf.body_b}] += pf.force_on_a.z();
+    }
     for (int b = 0; b < model.num_bodies(); ++b) max_tilt[b] = std::max(max_tilt[b], tilt_of(body_rotation_of(s, model, b)));
   };
+  // Peaks of the requested sectional forces over every step (the CSV rows are every output_every
+  // steps and can miss an impact's peak, which lasts a few ms).
+  struct SectionPeak {
+    std::array<double, 6> min, max, t_min, t_max;
+  };
+  std::vector<SectionPeak> section_peaks(sections.size());
+  for (auto& pk : section_peaks) {
+    pk.min.fill(std::numeric_limits<double>::infinity());
+    pk.max.fill(-std::numeric_limits<double>::infinity());
+    pk.t_min.fill(0);
+    pk.t_max.fill(0);
+  }
+  auto track_section_peaks = [&](const Sim& s) {
+    for (size_t i = 0; i < sections.size(); ++i) {
+      const auto f = s.section_forces(sections[i].element);
+      const std::array<double, 6> v{f.N, f.Qy, f.Qz, f.Mx, f.My, f.Mz};
+      auto& pk = section_peaks[i];
+      for (int c = 0; c < 6; ++c) {
+        if (v[c] < pk.min[c]) pk.min[c] = v[c], pk.t_min[c] = s.time();
+        if (v[c] > pk.max[c]) pk.max[c] = v[c], pk.t_max[c] = s.time();
+      }
+    }
+  };
+  track_section_peaks(sim);
   auto write_vtu_frame = [&](const Sim& s) {
     const std::string name = "vtu/room_" + std::to_string(s.steps()) + ".vtu";
     write_vtu(out + "/" + name, line_mesh(s, model, true));
@@ -532,7 +590,6 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt) {
     pvd.write();
   };
 
-  const double t_end = opt.duration.value_or(spec.duration);
   sum.duration = t_end;
   Progress progress;
   progress.on = opt.progress;
@@ -546,6 +603,7 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt) {
         break;
       }
       sim.step();
+      track_section_peaks(sim);
       if (sim.steps() % opt.output_every == 0) record(sim);
       if (spec.outputs.vtu_every > 0 && sim.steps() % spec.outputs.vtu_every == 0) write_vtu_frame(sim);
       progress.update(sim.time(), t_end);
@@ -560,8 +618,12 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt) {
   energy_csv.flush();
   contact_csv.flush();
 
-  // Final state of every item.
-  const auto& final_pairs = sim.contact_model().pair_forces();
+  // Final state of every item. A run that ended before its last 0.5 s judges support from its last step.
+  if (settle_rows == 0) {
+    settle_rows = 1;
+    for (const auto& pf : sim.contact_model().pair_forces())
+      if (pf.body_a >= 0 && pf.body_b >= 0) settle_fz_on_a[{pf.body_a, pf.body_b}] += pf.force_on_a.z();
+  }
   for (const auto& it : items) {
     ItemFinalState st;
     st.name = it.name;
@@ -586,13 +648,14 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt) {
       low0 = std::min(low0, model.node(n).X.z());
     }
     st.lift = low - low0;
-    // It rests (or leans) on the item that pushes it up the most (more than 1 N): an item pressed
-    // down by another one does not rest on it.
+    // It rests (or leans) on the item that pushes it up the most (more than 1 N on average over the
+    // last 0.5 s): an item pressed down by another one does not rest on it.
     double most_up = 1.0;
-    for (const auto& pf : final_pairs) {
-      const int other = pf.body_a == it.body ? pf.body_b : pf.body_b == it.body ? pf.body_a : -100;
-      if (other < 0) continue;
-      const double up = pf.body_a == it.body ? pf.force_on_a.z() : -pf.force_on_a.z();
+    for (const auto& [pair, fz_sum] : settle_fz_on_a) {
+      const auto [a, b] = pair;
+      const int other = a == it.body ? b : b == it.body ? a : -100;
+      if (other < 0 || settle_rows == 0) continue;
+      const double up = (a == it.body ? fz_sum : -fz_sum) / settle_rows;
       if (up > most_up) most_up = up, st.resting_on = body_names[other];
     }
     if (st.tilt_deg > 60) st.state = "overturned";
@@ -605,6 +668,8 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt) {
   }
   const auto E = sim.energy();
   sum.energy_imbalance = std::abs(E.imbalance()) / E.scale();
+  if (sum.status == "completed")
+    sum.diagnosis = energy_loss_warning(E, spec.dt, opt.energy_loss_warning, step_estimate);
   sum.t_end = sim.time();
   sum.steps = sim.steps();
   sum.factorizations = sim.factorizations();
@@ -621,6 +686,18 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt) {
                            {"resting_on", s.resting_on},
                            {"cog_displacement_m", {s.cog_displacement.x(), s.cog_displacement.y(), s.cog_displacement.z()}}});
   write_text(out + "/final_state.json", final_state.dump(2) + "\n");
+  auto section_peak_json = [&] {
+    nlohmann::json a = nlohmann::json::array();
+    const char* names[6] = {"N", "Qy", "Qz", "Mx", "My", "Mz"};
+    for (size_t i = 0; i < sections.size(); ++i) {
+      nlohmann::json e = {{"section", sections[i].name}};
+      for (int c = 0; c < 6; ++c)
+        e[names[c]] = {{"min", section_peaks[i].min[c]}, {"t_min_s", section_peaks[i].t_min[c]},
+                       {"max", section_peaks[i].max[c]}, {"t_max_s", section_peaks[i].t_max[c]}};
+      a.push_back(e);
+    }
+    return a;
+  };
   nlohmann::json summary = {
       {"furniture_fem_version", version_string},
       {"scene", to_json(spec)},
@@ -653,6 +730,7 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt) {
       {"max_energy_imbalance_relative", sum.max_energy_imbalance},
       {"ground_motion_peak_m_s2", {motion.x.peak(), motion.has_y ? motion.y.peak() : 0.0, motion.has_z ? motion.z.peak() : 0.0}},
       {"final_state", final_state},
+      {"sectional_force_peaks", section_peak_json()},
       {"eigen_version", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
                             std::to_string(EIGEN_MINOR_VERSION)}};
   write_text(out + "/summary.json", summary.dump(2) + "\n");

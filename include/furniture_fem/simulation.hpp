@@ -422,6 +422,7 @@ class Simulation {
       e.strain += strain_energy(el);
       if constexpr (requires { committed_[el].plastic_work; }) e.plastic_work += committed_[el].plastic_work;
     }
+    if (!started_) e.initial_total = e.total();  // before the first step the ledger is balanced by definition
     return e;
   }
   long factorizations() const {

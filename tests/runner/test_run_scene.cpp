@@ -151,9 +151,11 @@ json check_outputs(const std::string& out, const SceneSpec& spec, bool expect_fi
   const CsvTable markers = check_csv(out + "/markers.csv", {});
   for (const auto& m : spec.outputs.markers)
     for (const char* c : {"_x", "_y", "_z"}) CHECK(markers.has(m.name + c));
-  check_csv(out + "/sectional_forces.csv", {});
-  check_csv(out + "/energy.csv", {"kinetic", "strain", "gravity_potential", "external_work", "contact_work",
-                                  "damping_work", "plastic_work", "imbalance"});
+  const CsvTable sections = check_csv(out + "/sectional_forces.csv", {});
+  const CsvTable energy = check_csv(out + "/energy.csv", {"kinetic", "strain", "gravity_potential", "external_work",
+                                                         "contact_work", "damping_work", "plastic_work", "imbalance"});
+  // The first row is the state before any step: nothing has been gained or lost yet.
+  CHECK(energy.column("imbalance").front() == 0.0);
   check_csv(out + "/contact_forces.csv", {"body_a", "body_b", "fx", "fy", "fz"}, false);
   const json fin = read_json(out + "/final_state.json");
   REQUIRE(fin.is_array());
@@ -170,6 +172,22 @@ json check_outputs(const std::string& out, const SceneSpec& spec, bool expect_fi
   const json sum = read_json(out + "/summary.json");
   CHECK(sum.at("scene").at("name") == spec.name);
   CHECK(sum.at("nodes").get<int>() == model_nodes(spec));
+  // The peaks over every step bound every sampled row, and each is reached at a sampled time or
+  // between two (so a 10 ms sampling can only under-report them).
+  const json& peaks = sum.at("sectional_force_peaks");
+  REQUIRE(peaks.size() == spec.outputs.sectional_forces.size());
+  for (const auto& pk : peaks) {
+    const std::string name = pk.at("section");
+    for (const char* c : {"N", "Qy", "Qz", "Mx", "My", "Mz"}) {
+      INFO(name << " " << c);
+      const auto& col = sections.column(name + "_" + c);
+      REQUIRE_FALSE(col.empty());
+      const double lo = *std::min_element(col.begin(), col.end()), hi = *std::max_element(col.begin(), col.end());
+      const double tol = 1e-9 * std::max(1.0, std::max(std::abs(lo), std::abs(hi)));
+      CHECK(pk.at(c).at("max").get<double>() >= hi - tol);
+      CHECK(pk.at(c).at("min").get<double>() <= lo + tol);
+    }
+  }
   // The PVD lists the VTU files, which exist and hold every node.
   if (spec.outputs.vtu_every > 0) {
     const auto files = pvd_files(out + "/room.pvd");
@@ -549,5 +567,32 @@ TEST_CASE("final states: an item on a slippery floor under a strong pulse slides
       CHECK(it.slide < 0.01);
       CHECK(it.tilt_deg < 2.0);
     }
+  }
+}
+
+TEST_CASE("a completed run that lost too much energy carries a warning naming the cause", "[runner][energy]") {
+  // A ledger that started at 100 J of gravity energy and holds 60 J with no work done: 40 J lost,
+  // 40 % of its scale (100 J, the initial total).
+  EnergyLedger E;
+  E.initial_total = 100;
+  E.gravity_potential = 60;
+  ContactStepEstimate est;
+  est.dt = 1e-3;
+  est.item = "desk";
+  REQUIRE(E.imbalance() == Approx(-40));
+  REQUIRE(E.scale() == Approx(100));
+  SECTION("dt beyond the contact's stable step: names the time step and the item") {
+    const std::string w = energy_loss_warning(E, 5e-3, 0.15, est);
+    CHECK_THAT(w, Catch::Contains("does not close") && Catch::Contains("40 %") &&
+                      Catch::Contains("too stiff for the time step") && Catch::Contains("'desk'"));
+  }
+  SECTION("dt within it: names impacts") {
+    CHECK_THAT(energy_loss_warning(E, 5e-4, 0.15, est), Catch::Contains("Impacts"));
+  }
+  SECTION("a loss under the limit, a gain, or no limit: no warning") {
+    CHECK(energy_loss_warning(E, 5e-3, 0.5, est).empty());
+    CHECK(energy_loss_warning(E, 5e-3, 0.0, est).empty());
+    E.gravity_potential = 140;  // 40 J made: the creation check's business, not this one's
+    CHECK(energy_loss_warning(E, 5e-3, 0.15, est).empty());
   }
 }

@@ -105,16 +105,16 @@ TEST_CASE("stability: a time step five times larger (5 ms)", "[stability][numeri
     CHECK((sum.items[i].cog_displacement - ref.items[i].cog_displacement).norm() < 0.15);
   }
   if (full) {
-    // The whole 10 s record: in the strong phase the lagging contact forces keep pumping energy in
-    // (measured: +63 J of net contact work, 27.5 % of the scale, by t = 8.95 s, the ledger's
-    // imbalance at 74 %), so the run stops as diverged, naming the time step against the penalty.
+    // The whole 10 s record. Before the finite-rotation update the lagging contact forces pumped
+    // energy in and the run stopped as diverged at t = 8.95 s; now (measured) it completes with 59 %
+    // of the ledger's scale lost. Either way it cannot be trusted, and it must say so, naming the
+    // time step against the penalty: stopped as diverged, or completed with the loss warning.
     const RunOptions opt = quiet("dt5ms_10s");
     const RunSummary whole = run_scene(configuration2(5e-3, 10.0, 1.0), opt);
-    report("dt = 5 ms (paper penalty), whole record", whole, "diverged",
-           "configuration 2, 10 s: stops at t = " + num(whole.t_end) + " s");
-    INFO(whole.diagnosis);
-    REQUIRE(whole.status == "diverged");
-    CHECK(whole.t_end > 3.0);
+    report("dt = 5 ms (paper penalty), whole record", whole, "diverged or warned",
+           "configuration 2, 10 s: " + whole.status + " at t = " + num(whole.t_end) + " s");
+    INFO(whole.status << ": " << whole.diagnosis);
+    CHECK((whole.status == "diverged" || (whole.status == "completed" && whole.energy_imbalance > 0.15)));
     CHECK(whole.diagnosis.find("too stiff for the time step") != std::string::npos);
     check_outputs_readable(opt.out_dir, 1.0);
     // At dt = 1 ms the same 10 s close the ledger to 0.0075 (measured; x2 margin).
