@@ -25,12 +25,15 @@
 //   cd /work/main && nice -n 10 ./build/bench/speed_vs_error            # ~15-25 min on one core
 //   ./build/bench/speed_vs_error --only default,dt_5ms --duration 1     # a subset, for a quick look
 // Options: --docs DIR (default docs), --duration S (3), --pga M_S2 (4.0), --only a,b,c, --list,
-// --no-reference (the variants' own final states only), --reference-refresh N (1; the reference's
+// --no-reference (the variants' own final states only), --table-from LOG (write the files from a
+// previous run's printed lines, running nothing; variants the log lacks are left out),
+// --reference-refresh N (1; the reference's
 // factorisation is 86 % of its time: N = 5 makes it about 3 times cheaper, with the body rotation
 // taken out of the reused factorisation at dt = 0.25 ms).
 #include <furniture_fem/plot.hpp>
 #include <furniture_fem/scene_runner.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -281,6 +284,7 @@ int main(int argc, char** argv) {
   double duration = 3.0, pga = 4.0;
   bool list = false, no_reference = false;
   int reference_refresh = 1;
+  std::string table_from;  // a previous run's printed log: write the files from it, run nothing
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -297,6 +301,7 @@ int main(int argc, char** argv) {
     else if (a == "--list") list = true;
     else if (a == "--no-reference") no_reference = true;
     else if (a == "--reference-refresh") reference_refresh = std::stoi(next());
+    else if (a == "--table-from") table_from = next();
     else {
       std::fprintf(stderr, "usage: speed_vs_error [--docs DIR] [--duration S] [--pga M_S2] [--only a,b] [--list] [--no-reference] [--reference-refresh N]\n");
       return 2;
@@ -321,10 +326,59 @@ int main(int argc, char** argv) {
   }
   std::printf("speed vs error: %g s of synthetic 3-D motion (pga %g m/s^2), tall cabinet + desk\n", duration, pga);
   const Variant refv = reference_variant(reference_refresh);
-  std::printf("reference (%s)...\n", refv.label.c_str());
-  std::fflush(stdout);
-  const Result ref = run_variant(refv, duration, pga);
-  std::printf("  %s, %d elements, %.1f s wall, energy imbalance %.3g; slide %.1f / %.1f mm, tilt %.2f / %.2f deg, "
+  struct Row {
+    Variant v;
+    Result r;
+    Errors e;
+  };
+  std::vector<Row> logged;  // --table-from: the rows a previous run printed
+  Result ref;
+  if (!table_from.empty()) {
+    // The lines this program prints: "  completed, N elements, W s wall, energy imbalance I; ..." for the
+    // reference, "name status N el W s rms R mm peak P mm slide S mm tilt T deg shear Q % imbalance I"
+    // for each variant ("-" for a value that does not exist). Variants the log lacks are left out.
+    std::ifstream in(table_from);
+    if (!in) {
+      std::fprintf(stderr, "%s: cannot be read\n", table_from.c_str());
+      return 2;
+    }
+    const auto value = [](const std::string& t) { return t == "-" ? NAN : std::stod(t); };
+    std::string line;
+    while (std::getline(in, line)) {
+      std::istringstream ls(line);
+      std::string name, status;
+      if (line.rfind("  completed, ", 0) == 0) {
+        std::sscanf(line.c_str(), "  completed, %d elements, %lf s wall, energy imbalance %lf", &ref.elements, &ref.wall,
+                    &ref.energy_imbalance);
+        continue;
+      }
+      if (!(ls >> name >> status)) continue;
+      const auto v = std::find_if(all.begin(), all.end(), [&](const Variant& x) { return x.name == name; });
+      if (v == all.end()) continue;
+      // Tokens after the status: N el W s rms R mm peak P mm slide S mm tilt T deg shear Q % imbalance I.
+      std::vector<std::string> w;
+      for (std::string t; ls >> t;) w.push_back(t);
+      if (w.size() < 21) continue;  // an unfinished line
+      Row row{*v, {}, {}};
+      row.r.status = status;
+      row.r.elements = std::stoi(w[0]);
+      row.r.wall = std::stod(w[2]);
+      row.e.rms_mm = value(w[5]);
+      row.e.peak_mm = value(w[8]);
+      row.e.slide_mm = value(w[11]);
+      row.e.tilt_deg = value(w[14]);
+      row.e.shear_pct = value(w[17]);
+      row.r.energy_imbalance = value(w[20]);
+      logged.push_back(row);
+    }
+    std::printf("%zu variants from %s\n", logged.size(), table_from.c_str());
+  } else {
+    std::printf("reference (%s)...\n", refv.label.c_str());
+    std::fflush(stdout);
+    ref = run_variant(refv, duration, pga);
+  }
+  if (table_from.empty())
+    std::printf("  %s, %d elements, %.1f s wall, energy imbalance %.3g; slide %.1f / %.1f mm, tilt %.2f / %.2f deg, "
               "peak |Q| %s N\n",
               ref.status.c_str(), ref.elements, ref.wall, ref.energy_imbalance, 1e3 * ref.slide[0], 1e3 * ref.slide[1],
               ref.tilt[0], ref.tilt[1], ref.peak_shear ? fmt(*ref.peak_shear).c_str() : "-");
@@ -332,13 +386,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "the reference did not complete: %s\n", ref.diagnosis.c_str());
     return 1;
   }
-  struct Row {
-    Variant v;
-    Result r;
-    Errors e;
-  };
-  std::vector<Row> rows;
+  std::vector<Row> rows = logged;
   for (const auto& v : all) {
+    if (!table_from.empty()) break;
     if (partial && only.find("," + v.name + ",") == std::string::npos) continue;
     std::printf("%-30s ", v.name.c_str());
     std::fflush(stdout);
