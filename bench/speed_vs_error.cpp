@@ -22,7 +22,7 @@
 //
 // Writes <docs>/speed_vs_error.csv, <docs>/speed_vs_error.md (the table) and
 // <docs>/figures/speed_vs_error.png (wall time against marker RMS error, log-log, Pareto front).
-//   cd /work/main && nice -n 10 ./build/bench/speed_vs_error            # ~15-25 min on one core
+//   cd /work/main && nice -n 10 ./build/bench/speed_vs_error            # the reference alone ~52 min on one core, CG ~1 h
 //   ./build/bench/speed_vs_error --only default,dt_5ms --duration 1     # a subset, for a quick look
 // Options: --docs DIR (default docs), --duration S (3), --pga M_S2 (4.0), --only a,b,c, --list,
 // --no-reference (the variants' own final states only), --table-from LOG (write the files from a
@@ -445,13 +445,13 @@ int main(int argc, char** argv) {
   }
   {
     ScatterPlot p;
-    p.title("Speed against error: tall cabinet + desk, " + fmt(duration) + " s synthetic 3-D, pga " + fmt(pga) +
-            " m/s^2")
+    p.title("Speed vs error: cabinet + desk, " + fmt(duration) + " s 3-D, pga " + fmt(pga))
         .xlabel("wall time (s, one thread)")
         .ylabel("marker displacement RMS error (mm)")
         .log_x()
         .log_y()
         .show_pareto_front();
+    p.style().legend = LegendPos::bottom_right;  // the slow, inaccurate corner (top right) holds the iterated runs
     std::vector<std::string> names;
     for (const auto& row : rows)
       if (std::isfinite(row.e.rms_mm) && row.e.rms_mm > 0) {
