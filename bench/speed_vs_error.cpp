@@ -22,7 +22,7 @@
 //
 // Writes <docs>/speed_vs_error.csv, <docs>/speed_vs_error.md (the table) and
 // <docs>/figures/speed_vs_error.png (wall time against marker RMS error, log-log, Pareto front).
-//   cd /work/main && nice -n 10 ./build/bench/speed_vs_error            # the reference alone ~52 min on one core, CG ~1 h
+//   cd /work/main && nice -n 10 ./build/bench/speed_vs_error            # the reference alone ~52 min on one core; the CG variant > 40 min
 //   ./build/bench/speed_vs_error --only default,dt_5ms --duration 1     # a subset, for a quick look
 // Options: --docs DIR (default docs), --duration S (3), --pga M_S2 (4.0), --only a,b,c, --list,
 // --no-reference (the variants' own final states only), --table-from LOG (write the files from a
