@@ -524,7 +524,8 @@ TEST_CASE("final states: an item on a slippery floor under a strong pulse slides
     const SceneSpec spec = parse_scene(write_json(dir + "/block.json", j));
     const RunSummary s = run_scene(spec, quiet(dir + "/block_out"));
     REQUIRE(s.status == "completed");
-    const auto& x = read_csv(dir + "/block_out/markers.csv").column("top_x");
+    const CsvTable markers = read_csv(dir + "/block_out/markers.csv");  // kept: column() returns a reference into it
+    const auto& x = markers.column("top_x");
     const double furthest = *std::min_element(x.begin(), x.end());
     INFO("furthest -X excursion " << furthest << " m, final state " << s.items.at(0).state);
     CHECK(furthest < -0.07);   // it slides up to the block (80 mm) ...
