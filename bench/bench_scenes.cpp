@@ -2,8 +2,8 @@
 // and of 2, 4 and 8 copies of configuration 3 side by side (scaling), with the time split into
 // element forces, contact (nodes against floor and walls, broad phase, narrow phase with the law),
 // linear solve (incl. assembly and factorisations) and the rest. Counters: ms per step of each phase.
-//   ./build/bench/bench_scenes --benchmark_min_time=2 --benchmark_repetitions=3
-//                              --benchmark_report_aggregates_only=true
+//   ./build/bench/bench_scenes --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+// Every measurement is 200 steps (two refreshes of the factorisations at the default interval).
 // The end-to-end figure (configuration 3, 10 s of 3-D input, every item at full ASI-Gauss fidelity)
 // is the main job itself: /usr/bin/time -v ./build/examples/furniture_quake --no-figures (see docs/performance.md).
 #include <benchmark/benchmark.h>
@@ -38,8 +38,9 @@ SceneSpec copies_of_configuration3(int copies) {
   return s;
 }
 
-void run_steps(benchmark::State& state, const SceneSpec& spec, int refresh) {
-  SceneSimulation<PaperAnisotropicFloorLaw, DirectLdltSolver> scene(spec, refresh);
+// refresh 0: the scene's default (100 steps); threads 0: all hardware threads.
+void run_steps(benchmark::State& state, const SceneSpec& spec, int refresh, int threads = 0) {
+  SceneSimulation<PaperAnisotropicFloorLaw, DirectLdltSolver> scene(spec, refresh, threads);
   auto& sim = *scene.sim;
   for (int i = 0; i < 20; ++i) sim.step();  // settle, first factorisations
   const StepTimings t0 = sim.timings();
@@ -66,12 +67,19 @@ void BM_Configuration(benchmark::State& state) {
 }
 BENCHMARK(BM_Configuration)
     ->ArgNames({"config", "refresh"})
-    ->Args({1, 20})->Args({2, 20})->Args({3, 20})->Args({3, 1})->Args({3, 100})
+    ->Args({1, 100})->Args({2, 100})->Args({3, 100})->Args({3, 1})->Args({3, 20})
+    ->Iterations(200)  // two refreshes at the default interval in every measurement
     ->Unit(benchmark::kMillisecond);
 
+// Scaling, on all hardware threads and on one (threads 1 separates the algorithm's growth from
+// the threads' sharing of caches and memory bandwidth).
 void BM_ConfigurationCopies(benchmark::State& state) {
-  run_steps(state, copies_of_configuration3(static_cast<int>(state.range(0))), 20);
+  run_steps(state, copies_of_configuration3(static_cast<int>(state.range(0))), 0, static_cast<int>(state.range(1)));
 }
-BENCHMARK(BM_ConfigurationCopies)->ArgNames({"copies"})->Arg(1)->Arg(2)->Arg(4)->Arg(8)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ConfigurationCopies)
+    ->ArgNames({"copies", "threads"})
+    ->Args({1, 0})->Args({2, 0})->Args({4, 0})->Args({8, 0})->Args({1, 1})->Args({8, 1})
+    ->Iterations(200)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace

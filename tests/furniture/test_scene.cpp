@@ -138,6 +138,7 @@ TEST_CASE("a scene file round-trips exactly", "[scene][json]") {
                     {"item", {{"alpha_kgf", 20}, {"q", 1.5}}}};
     j["integrator"] = {{"scheme", "generalized_alpha"}, {"rho_inf", 0.8}, {"iterate_to_equilibrium", true}};
     j["solver"] = "direct";
+    j["refresh_interval"] = 7;
     j["outputs"] = {{"folder", "results/x"},
                     {"markers", {"desk.top_front_centre", {{"name", "corner"}, {"item", "shelf"}, {"point", {0.4, -0.15, 1.8}}},
                                  {{"name", "seat"}, {"item", "office_chair"}, {"marker", "seat_centre"}}}},
@@ -147,6 +148,7 @@ TEST_CASE("a scene file round-trips exactly", "[scene][json]") {
     const SceneSpec scene = parse_scene_json(j, "full.json");
     CHECK(scene.walls[0].normal == Vec3(0, -1, 0));  // normalised on reading
     CHECK(scene.items[4].name == "table");           // unnamed items take their kind's name
+    CHECK(scene.refresh_interval == 7);
     const json once = to_json(scene);
     const std::string path = tmp_file("full.json");
     write_scene(scene, path);
@@ -196,6 +198,12 @@ TEST_CASE("broken scene files name the key path and the value", "[scene][errors]
     j["dt"] = -0.001;
     const std::string msg = parse_error(j);
     CHECK_THAT(msg, Contains("dt") && Contains("-0.001") && Contains("positive"));
+  }
+  SECTION("refresh interval not a positive integer") {
+    j["refresh_interval"] = 0;
+    CHECK_THAT(parse_error(j), Contains("refresh_interval") && Contains("got 0") && Contains("[1, 1e6]"));
+    j["refresh_interval"] = 2.5;
+    CHECK_THAT(parse_error(j), Contains("refresh_interval") && Contains("expected an integer"));
   }
   SECTION("dt longer than the run") {
     j["dt"] = 10.0;

@@ -15,7 +15,7 @@ Outcome stack_under_pulse(Fidelity fidelity, double dt, double duration, bool it
   SceneSpec s = open_floor("stacked cabinets, pulse", dt, duration);
   s.items.push_back({"stack", ItemKind::separated_cabinets, 0.0, 0.0, -90.0, fidelity, {}});
   s.integrator.iterate_to_equilibrium = iterate;
-  Scene scene(s, 20, 1);
+  Scene scene(s, 0, 1);
   constexpr double peak = 8.0, width = 0.3;
   scene.sim->set_table_acceleration(
       [](double t) { return Vec3(t < width ? peak * std::sin(std::numbers::pi * t / width) : 0.0, 0, 0); });
@@ -76,7 +76,7 @@ FallResult cabinet_onto_desk(Fidelity fidelity, double dt, double duration, doub
   s.items.push_back({"tall_cabinet", ItemKind::tall_cabinet, cabinet_x, 0.0, -90.0, fidelity, {}});
   s.items.push_back({"desk", ItemKind::desk, desk_x, 0.0, -90.0, fidelity, {}});
   validate(s);
-  Scene scene(s, 20, 1);
+  Scene scene(s, 0, 1);
   // Rotation about +Y with angular velocity -omega tips the top towards -X, about the front edge.
   scene.sim->set_body_velocity(scene.items[0].body, Vec3::Zero(), Vec3(0, -omega, 0), Vec3(front, 0, 0));
   return {run(scene, s, duration), gap};
