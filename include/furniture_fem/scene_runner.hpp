@@ -310,7 +310,7 @@ struct SceneSimulation {
   std::unique_ptr<Sim> sim;
   std::vector<int> rigid_bodies;
 
-  // refresh_interval 0: the scene's (SceneSpec::refresh_interval); threads 0: all hardware threads.
+  // refresh_interval 0: the scene's (SceneSpec::refresh_every, in steps); threads 0: all hardware threads.
   explicit SceneSimulation(const SceneSpec& spec, int refresh_interval = 0, int threads = 0) {
     items = build_scene(spec, *model);
     motion = scene_table_motion(spec);
@@ -335,7 +335,7 @@ struct SceneSimulation {
     integrator.mode = spec.integrator.iterate_to_equilibrium ? EquilibriumMode::iterate : EquilibriumMode::carry_over;
     SimulationOptions so;
     so.dt = spec.dt;
-    so.refresh_interval = refresh_interval > 0 ? refresh_interval : spec.refresh_interval;
+    so.refresh_interval = refresh_interval > 0 ? refresh_interval : spec.refresh_interval_steps();
     so.threads = threads;
     sim = std::make_unique<Sim>(*model, integrator, so, std::move(contact));
     const TableMotion* m = &motion;

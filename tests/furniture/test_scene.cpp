@@ -138,7 +138,7 @@ TEST_CASE("a scene file round-trips exactly", "[scene][json]") {
                     {"item", {{"alpha_kgf", 20}, {"q", 1.5}}}};
     j["integrator"] = {{"scheme", "generalized_alpha"}, {"rho_inf", 0.8}, {"iterate_to_equilibrium", true}};
     j["solver"] = "direct";
-    j["refresh_interval"] = 7;
+    j["refresh_every"] = 0.02;
     j["outputs"] = {{"folder", "results/x"},
                     {"markers", {"desk.top_front_centre", {{"name", "corner"}, {"item", "shelf"}, {"point", {0.4, -0.15, 1.8}}},
                                  {{"name", "seat"}, {"item", "office_chair"}, {"marker", "seat_centre"}}}},
@@ -148,7 +148,12 @@ TEST_CASE("a scene file round-trips exactly", "[scene][json]") {
     const SceneSpec scene = parse_scene_json(j, "full.json");
     CHECK(scene.walls[0].normal == Vec3(0, -1, 0));  // normalised on reading
     CHECK(scene.items[4].name == "table");           // unnamed items take their kind's name
-    CHECK(scene.refresh_interval == 7);
+    CHECK(scene.refresh_interval_steps() == 20);  // 0.02 s at the default dt of 1 ms
+    SceneSpec coarse_steps;
+    coarse_steps.dt = 0.005;
+    CHECK(coarse_steps.refresh_interval_steps() == 20);  // the default 0.1 s
+    coarse_steps.refresh_every = 1e-4;
+    CHECK(coarse_steps.refresh_interval_steps() == 1);   // never fewer than every step
     const json once = to_json(scene);
     const std::string path = tmp_file("full.json");
     write_scene(scene, path);
@@ -199,11 +204,11 @@ TEST_CASE("broken scene files name the key path and the value", "[scene][errors]
     const std::string msg = parse_error(j);
     CHECK_THAT(msg, Contains("dt") && Contains("-0.001") && Contains("positive"));
   }
-  SECTION("refresh interval not a positive integer") {
-    j["refresh_interval"] = 0;
-    CHECK_THAT(parse_error(j), Contains("refresh_interval") && Contains("got 0") && Contains("[1, 1e6]"));
-    j["refresh_interval"] = 2.5;
-    CHECK_THAT(parse_error(j), Contains("refresh_interval") && Contains("expected an integer"));
+  SECTION("refresh interval not positive") {
+    j["refresh_every"] = 0;
+    CHECK_THAT(parse_error(j), Contains("refresh_every") && Contains("got 0") && Contains("positive"));
+    j["refresh_every"] = "often";
+    CHECK_THAT(parse_error(j), Contains("refresh_every") && Contains("expected a number"));
   }
   SECTION("dt longer than the run") {
     j["dt"] = 10.0;
