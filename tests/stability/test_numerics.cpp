@@ -75,7 +75,7 @@ TEST_CASE("stability: a penalty 100 times stiffer", "[stability][numerics]") {
   }
   SECTION("dt = 0.1 ms: stable, the ledger closes") {
     // A tenth of the paper's step is within the stiff penalty's limit (estimate: 0.13 ms for the
-    // chair's casters; observed stable). Measured 7.8e-5 over 0.5 s (the envelope's rise), 0.0105
+    // chair's casters; observed stable). Measured 7.8e-5 over 0.5 s (the envelope's rise), 0.0104
     // over 3 s (into the strong phase; dt = 1 ms with the paper's penalty: 0.002); x10 and x3
     // margins. Short: 0.5 s (5000 steps); full: 3 s.
     const SceneSpec s = configuration2(1e-4, full ? 3.0 : 0.5, 100.0);

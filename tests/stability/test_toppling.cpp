@@ -26,8 +26,8 @@ Outcome stack_under_pulse(Fidelity fidelity, double dt, double duration, bool it
 
 TEST_CASE("stability: stacked cabinets topple together under a strong pulse", "[stability][toppling]") {
   const bool full = full_mode();
-  // Measured (Release, g++ 12, dt = 1 ms, carry-over with the finite-rotation update): coarse -0.088
-  // at the end (the largest), full fidelity -0.176 (before the update: -0.242 and -0.393, the
+  // Measured (Release, g++ 12, dt = 1 ms, carry-over with the finite-rotation update): coarse -0.089
+  // at the end (the largest), full fidelity -0.169 (before the update: -0.242 and -0.393, the
   // rotation itself was being damped). Almost all of it is lost in the ~0.05 s when the upper
   // cabinet lands on the floor. The bounds were set before the update and are kept (they now leave
   // a margin of ~3-4); the check that matters for
@@ -45,15 +45,15 @@ TEST_CASE("stability: stacked cabinets topple together under a strong pulse", "[
   CHECK(o.item("stack/upper").tilt_deg > 60);
 
   // The loss at the impact is a time-discretisation error of the explicit contact, not a leak:
-  // at dt = 0.25 ms it falls to 0.026 (coarse; measured), a factor ~9 for a factor 4 in dt.
+  // at dt = 0.25 ms it falls to 0.022 (coarse; measured), a factor ~9 for a factor 4 in dt.
   const Outcome fine = stack_under_pulse(Fidelity::coarse, 2.5e-4, 2.5);
   report("stacked cabinets toppling, dt = 0.25 ms", fine, "< 0.05", "coarse mesh: convergence of the impact loss");
   require_trusted(fine, 0.05);
   CHECK(fine.item("stack/upper").tilt_deg > 60);
 
   if (full) {
-    // Newton iterations to equilibrium at dt = 1 ms close the ledger to ~1 % (measured 0.011 at the
-    // end, 0.038 at worst, coarse) at ten times the cost.
+    // Newton iterations to equilibrium at dt = 1 ms close the ledger to ~1 % (measured 0.0083 at the
+    // end, 0.040 at worst, coarse) at ten times the cost.
     const Outcome it = stack_under_pulse(Fidelity::coarse, 1e-3, 2.5, true);
     report("stacked cabinets toppling, iterate to equilibrium", it, "< 0.08", "coarse mesh, 1 ms");
     require_trusted(it, 0.08);
@@ -90,7 +90,7 @@ TEST_CASE("stability: a tall cabinet falls onto the desk", "[stability][toppling
   // 17 mm: 0.53 rad/s).
   const FallResult r = cabinet_onto_desk(full ? Fidelity::full : Fidelity::coarse, 1e-3, full ? 3.0 : 2.5, 1.0);
   const Outcome& o = r.outcome;
-  // Measured: coarse -0.0485 at the end and at worst, full fidelity -0.106 (docs/performance.md);
+  // Measured: coarse -0.051 at the end and at worst, full fidelity -0.103 (docs/performance.md);
   // lost at the strike on the desk's edge and the landing. Bound: x2 margin.
   const double bound = full ? 0.2 : 0.1;
   report("tall cabinet falling onto the desk", o, "< " + num(bound),
