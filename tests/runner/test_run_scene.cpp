@@ -548,6 +548,23 @@ TEST_CASE("final states: an item on a slippery floor under a strong pulse slides
     CHECK(s.items[1].name == "pair/upper");
     CHECK(s.items[1].resting_on == "pair/lower");
     CHECK(s.items[1].state == "standing");
+    // contact_forces.csv rows are means over the steps since the previous row: at rest they carry the
+    // weights (Table 2: upper 21.3 kg, lower 28.8 kg). Rows of single steps read a phase of the
+    // penalty contact's step-to-step alternation instead (a cabinet at rest showed -75 N from the floor).
+    const CsvTable cf = read_csv(dir + "/stacked_out/contact_forces.csv");
+    double on_lower_from_upper = 0, on_lower_from_floor = 0;
+    int n_pair = 0, n_floor = 0;
+    for (std::size_t r = 0; r < cf.rows(); ++r) {
+      if (cf.column("t")[r] < 0.15) continue;
+      const int a = static_cast<int>(cf.column("body_a")[r]), b = static_cast<int>(cf.column("body_b")[r]);
+      if (a == 0 && b == 1) on_lower_from_upper += cf.column("fz")[r], ++n_pair;
+      if (a == 0 && b == -1) on_lower_from_floor += cf.column("fz")[r], ++n_floor;
+    }
+    REQUIRE(n_pair > 10);
+    REQUIRE(n_floor > 10);
+    const double g = 9.80665;
+    CHECK(on_lower_from_upper / n_pair == Approx(-21.3 * g).epsilon(0.03));
+    CHECK(on_lower_from_floor / n_floor == Approx((21.3 + 28.8) * g).epsilon(0.03));
   }
   SECTION("standing") {
     json j = small_scene_json(dir + "/stand_out");
