@@ -167,8 +167,9 @@ class RoomContact {
 
   void commit() {
     ++steps_;
+    // No copy back into node_trial_: add_forces overwrites every entry of it (reset out of contact,
+    // the committed state in contact) before the law reads it.
     node_state_.swap(node_trial_);
-    node_trial_ = node_state_;
     pair_state_.swap(pair_trial_);  // pairs out of contact forget their history
     pair_trial_.clear();
   }
