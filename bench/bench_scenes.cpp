@@ -38,7 +38,7 @@ SceneSpec copies_of_configuration3(int copies) {
   return s;
 }
 
-// refresh 0: the scene's default (100 steps); threads 0: all hardware threads.
+// refresh 0: the scene's default (every 0.1 s); threads 0: all hardware threads.
 void run_steps(benchmark::State& state, const SceneSpec& spec, int refresh, int threads = 0) {
   SceneSimulation<PaperAnisotropicFloorLaw, DirectLdltSolver> scene(spec, refresh, threads);
   auto& sim = *scene.sim;

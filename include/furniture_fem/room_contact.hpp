@@ -120,7 +120,6 @@ class RoomContact {
     const auto t_planes = clock::now();
     const Model& model = view.model;
     pair_forces_.clear();
-    std::fill(fixed_slot_.begin(), fixed_slot_.end(), -1);
     pair_trial_.clear();
     active_ = 0;
     // Nodes against planes (floor, walls).
@@ -191,27 +190,12 @@ class RoomContact {
     return n > 1e-9 ? Vec3(a / n) : Vec3::Zero();
   }
 
-  // A body against the floor, a wall or an obstacle finds its entry through fixed_slot_ instead of a
-  // search over all pairs once per contact node (which grows with the number of bodies; measured
-  // effect on 8 copies of configuration 3 within noise); item-item pairs, few per step, are searched.
   void add_pair_force(int a, int b, const Vec3& f) {
-    int* slot = nullptr;
-    if (b < 0) {
-      const std::size_t k = 3 * static_cast<std::size_t>(a) + static_cast<std::size_t>(-b - 1);
-      if (fixed_slot_.size() <= k) fixed_slot_.resize(k + 1, -1);
-      slot = &fixed_slot_[k];
-      if (*slot >= 0) {
-        pair_forces_[*slot].force_on_a += f;
+    for (auto& pf : pair_forces_)
+      if (pf.body_a == a && pf.body_b == b) {
+        pf.force_on_a += f;
         return;
       }
-    } else {
-      for (auto& pf : pair_forces_)
-        if (pf.body_a == a && pf.body_b == b) {
-          pf.force_on_a += f;
-          return;
-        }
-    }
-    if (slot) *slot = static_cast<int>(pair_forces_.size());
     pair_forces_.push_back({a, b, f});
   }
 
@@ -332,7 +316,6 @@ class RoomContact {
   BroadPhase broad_phase_;
   std::vector<std::pair<int, int>> candidates_;
   std::vector<PairForce> pair_forces_;
-  std::vector<int> fixed_slot_;  // 3 per body (floor, wall, obstacle): index into pair_forces_ or -1
   std::vector<Vec3> x_broad_;  // node positions at the last broad phase
   Timings timings_;
   long steps_ = 0, broad_runs_ = 0;

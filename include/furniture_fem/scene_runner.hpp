@@ -530,8 +530,7 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt) {
     settle_rows += settling;
     ++contact_steps;
     for (const auto& pf : s.contact_model().pair_forces()) {
-      auto [it, fresh] = contact_sum.try_emplace({pf.body_a, pf.body_b}, Vec3::Zero());
-      it->second += pf.force_on_a;
+      contact_sum.try_emplace({pf.body_a, pf.body_b}, Vec3::Zero()).first->second += pf.force_on_a;
       if (settling && pf.body_a >= 0 && pf.body_b >= 0) settle_fz_on_a[{pf.body_a, pf.body_b}] += pf.force_on_a.z();
     }
   };

@@ -554,11 +554,12 @@ TEST_CASE("final states: an item on a slippery floor under a strong pulse slides
     const CsvTable cf = read_csv(dir + "/stacked_out/contact_forces.csv");
     double on_lower_from_upper = 0, on_lower_from_floor = 0;
     int n_pair = 0, n_floor = 0;
+    const auto &t = cf.column("t"), &body_a = cf.column("body_a"), &body_b = cf.column("body_b"), &fz = cf.column("fz");
     for (std::size_t r = 0; r < cf.rows(); ++r) {
-      if (cf.column("t")[r] < 0.15) continue;
-      const int a = static_cast<int>(cf.column("body_a")[r]), b = static_cast<int>(cf.column("body_b")[r]);
-      if (a == 0 && b == 1) on_lower_from_upper += cf.column("fz")[r], ++n_pair;
-      if (a == 0 && b == -1) on_lower_from_floor += cf.column("fz")[r], ++n_floor;
+      if (t[r] < 0.15) continue;
+      const int a = static_cast<int>(body_a[r]), b = static_cast<int>(body_b[r]);
+      if (a == 0 && b == 1) on_lower_from_upper += fz[r], ++n_pair;
+      if (a == 0 && b == -1) on_lower_from_floor += fz[r], ++n_floor;
     }
     REQUIRE(n_pair > 10);
     REQUIRE(n_floor > 10);
