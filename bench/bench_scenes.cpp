@@ -1,7 +1,8 @@
 // Per-step cost of the paper's configurations 1, 2 and 3 (built-in synthetic 3-D motion, dt = 1 ms),
-// and of 2, 4 and 8 copies of configuration 3 side by side (scaling), with the time split into
-// element forces, contact (nodes against floor and walls, broad phase, narrow phase with the law),
-// linear solve (incl. assembly and factorisations) and the rest. Counters: ms per step of each phase.
+// and of 2, 4, 8 and 16 copies of configuration 3 side by side (scaling; separate scenes are its
+// control), with the time split into contact (nodes against floor and walls, broad phase, narrow
+// phase with the law), the sweep over the bodies (wall), and inside it the thread time of element
+// forces and of the solves (incl. assembly and factorisations). Counters: ms per step.
 //   ./build/bench/bench_scenes --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 // Every measurement is 200 steps (two refreshes of the factorisations at the default interval).
 // The end-to-end figure (configuration 3, 10 s of 3-D input, every item at full ASI-Gauss fidelity)
@@ -46,7 +47,9 @@ void run_steps(benchmark::State& state, const SceneSpec& spec, int refresh, int 
   const StepTimings t0 = sim.timings();
   const auto c0 = sim.contact_model().timings();
   const long s0 = sim.steps();
-  for (auto _ : state) sim.step();
+  const long b0 = sim.contact_model().broad_phase_runs();
+  long steps_with_shift = 0;
+  for (auto _ : state) steps_with_shift += sim.step().shifted_points > 0;
   const StepTimings t = sim.timings();
   const auto c = sim.contact_model().timings();
   const double n = double(sim.steps() - s0);
@@ -59,7 +62,12 @@ void run_steps(benchmark::State& state, const SceneSpec& spec, int refresh, int 
   state.counters["ms_narrow_law"] = 1e3 * (c.pairs - c0.pairs) / n;
   state.counters["ms_solve"] = 1e3 * (t.solve - t0.solve) / n;
   state.counters["ms_factorize"] = 1e3 * (t.factorize - t0.factorize) / n;
+  state.counters["ms_bodies"] = 1e3 * (t.bodies - t0.bodies) / n;
   state.counters["ms_other"] = 1e3 * (t.other() - t0.other()) / n;
+  // How often a step moved an integration point, and how often the broad phase re-ran: both are
+  // events anywhere in the scene, so their frequency grows with the scene's size.
+  state.counters["shift_step_fraction"] = steps_with_shift / n;
+  state.counters["broad_runs_per_step"] = (sim.contact_model().broad_phase_runs() - b0) / n;
 }
 
 void BM_Configuration(benchmark::State& state) {
@@ -78,7 +86,29 @@ void BM_ConfigurationCopies(benchmark::State& state) {
 }
 BENCHMARK(BM_ConfigurationCopies)
     ->ArgNames({"copies", "threads"})
-    ->Args({1, 0})->Args({2, 0})->Args({4, 0})->Args({8, 0})->Args({1, 1})->Args({8, 1})
+    ->Args({1, 0})->Args({2, 0})->Args({4, 0})->Args({8, 0})->Args({16, 0})->Args({1, 1})->Args({8, 1})
+    ->Iterations(200)
+    ->Unit(benchmark::kMillisecond);
+
+// The control for the scaling: `scenes` separate one-copy scenes, stepped in turn. Together they do
+// the work of that many copies in one scene and hold as much memory, but nothing in any of them sees
+// the others. If they cost what the copies cost, whatever the copies cost beyond `copies` times one
+// copy comes from the memory the scene occupies (one copy's data stays in the caches from step to
+// step, eight copies' data does not), not from the algorithm.
+void BM_SeparateScenes(benchmark::State& state) {
+  using Scene = SceneSimulation<PaperAnisotropicFloorLaw, DirectLdltSolver>;
+  const int threads = static_cast<int>(state.range(1));
+  std::vector<std::unique_ptr<Scene>> scenes;
+  for (int k = 0; k < state.range(0); ++k) scenes.push_back(std::make_unique<Scene>(copies_of_configuration3(1), 0, threads));
+  for (auto& scene : scenes)
+    for (int i = 0; i < 20; ++i) scene->sim->step();
+  for (auto _ : state)
+    for (auto& scene : scenes) scene->sim->step();
+  state.counters["elements"] = static_cast<double>(scenes.size() * scenes.front()->model->num_elements());
+}
+BENCHMARK(BM_SeparateScenes)
+    ->ArgNames({"scenes", "threads"})
+    ->Args({1, 0})->Args({8, 0})->Args({8, 1})
     ->Iterations(200)
     ->Unit(benchmark::kMillisecond);
 

@@ -20,7 +20,6 @@
 #include <chrono>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -66,11 +65,16 @@ struct NoContact {
 template <class C>
 concept ContactPolicy = requires(C c, const ContactView& view, Eigen::VectorXd& f) { c.add_forces(view, f); };
 
-// Where the time of the steps went (seconds, accumulated since the start; wall clock). Factorisation
-// and assembly are part of `solve`; `factorize` counts the factorisations alone.
+// Where the time of the steps went (seconds, accumulated since the start). Wall clock: `contact`
+// (every node and element pair, the whole scene at once), `bodies` (the sweep over the bodies that
+// does everything else a body needs: residual, solve, updates, element forces, energy, ASI shifts)
+// and `total`. Inside the sweep, the time of each body's parts is summed over the bodies, so with
+// several threads these are thread seconds and can exceed `bodies`: `solve` (residual, assembly,
+// factorisation, substitution, finite-rotation update), `factorize` (the factorisations alone, part
+// of `solve`) and `elements` (kinematic update and element forces).
 struct StepTimings {
-  double elements = 0, contact = 0, solve = 0, factorize = 0, total = 0;
-  double other() const { return total - elements - contact - solve; }
+  double elements = 0, contact = 0, solve = 0, factorize = 0, bodies = 0, total = 0;
+  double other() const { return total - contact - bodies; }  // predictor, loads, checks (wall)
 };
 
 struct StepInfo {
@@ -213,6 +217,11 @@ class Simulation {
   bool dof_fixed(int node, int dof) const { return (model_.node(node).fixed >> dof) & 1u; }
 
   // ---- time stepping ----
+  // A step is one pass over the whole scene for what couples the bodies (the loads' time functions
+  // and contact), and one sweep over the bodies for the rest: each body's residual, solve, update,
+  // element forces, energy and ASI shifts are done while its data is in the core's cache. Done phase
+  // by phase over the whole scene instead, every phase streamed the scene's state from memory, and the
+  // cost per element grew with the size of the scene (docs/performance.md section 2).
   StepInfo step() {
     const auto step_start = std::chrono::steady_clock::now();
     struct AddTotal {
@@ -221,92 +230,83 @@ class Simulation {
       ~AddTotal() { t.total += std::chrono::duration<double>(std::chrono::steady_clock::now() - s).count(); }
     } add_total{timings_, step_start};
     if (!started_) start();
-    const double dt = opt_.dt, b = coef_.beta, g = coef_.gamma;
-    const double t1 = t_ + dt;
+    const double t1 = t_ + opt_.dt;
     t_state_ = t1;
-    u0_ = u_;
-    R0_ = R_;
-    for (auto& bs : systems_)
-      if (bs.rigid) {
-        bs.rigid_c0 = mass_centre(bs);
-        bs.rigid_dc.setZero();
-        bs.rigid_Q.setIdentity();
-      }
-    vn_ = v_;
-    an_ = a_;
-    Du_.setZero();
     StepInfo info;
-    auto kinematics = [&] {
-      a_ = (Du_ - dt * vn_ - dt * dt * (0.5 - b) * an_) / (b * dt * dt);
-      v_ = vn_ + dt * ((1 - g) * an_ + g * a_);
-      for (int n = 0; n < model_.num_nodes(); ++n) {
-        u_[n] = u0_[n] + Du_.segment<3>(6 * n);
-        x_[n] = model_.node(n).X + u_[n];
-        R_[n] = detail::rotation_exp(Du_.segment<3>(6 * n + 3)) * R0_[n];
-      }
-    };
-    kinematics();
-    external_forces(t1, fext1_);
-    // The predictor is "no motion" (Du = 0), so the element forces of the last step still hold. Its
-    // Newmark velocity, (1 - gamma / beta) v_n, has the wrong sign, though, and friction or the
-    // paper's damping evaluated there would pump energy: contact sees the constant-acceleration
-    // estimate v_n + dt a_n instead.
-    v_ = vn_ + dt * an_;
-    timed(timings_.contact, [&] { contact_forces(t1, fc1_); });
-    v_ = vn_ + dt * ((1 - g) * an_ + g * a_);
-    double rel = residual(fext1_);
-    info.residual = rel;
-    const int max_it = integrator_.mode == EquilibriumMode::iterate ? opt_.max_iterations : 1;
-    if (opt_.check_finite && !std::isfinite(rel))
+    // Predictor "no motion" (Du = 0) and the loads at t_{n+1}. Its element forces are the last step's.
+    const Loads loads = loads_at(t1);
+    timed(timings_.bodies, [&] { detail::parallel_for(body_order_, opt_.threads, [&](int b) { predict_body(b, loads); }); });
+    // The predictor's Newmark velocity, (1 - gamma / beta) v_n, has the wrong sign, and friction or the
+    // paper's damping evaluated there would pump energy: contact sees v_n + dt a_n (v_contact_) instead.
+    timed(timings_.contact, [&] { contact_forces(t1, v_contact_, fc1_); });
+    if (opt_.check_finite && !(fc1_.allFinite() && fext1_.allFinite())) {
+      residual();  // for the diagnosis
       throw SimulationError(t_, "the residual is not finite (NaN or infinity) at the start of the step: " +
                                     non_finite_diagnosis());
-    const bool carry = integrator_.mode == EquilibriumMode::carry_over;
-    for (int it = 0; it < max_it; ++it) {
-      timed(timings_.solve, [&] {
-        info.refreshed_bodies += solve_bodies();
-        if (it == 0 && opt_.finite_rotation_update) finite_rotation_update();
+    }
+    if (integrator_.mode == EquilibriumMode::carry_over) {
+      // Carry-over: the contact forces applied over this step are those of the predictor (fc1_); the
+      // unbalance left by the solve enters the next step's residual, so neither the contact forces nor
+      // the residual are evaluated again (half the contact cost), and each body is done in one go.
+      body_sweep([&](int b) {
+        BodyStepSums& s = sums_[b];
+        timed(s.solve, [&] {
+          residual_body(systems_[b], fext1_, s.residual_num, s.residual_den);
+          solve_body(b, s);
+          if (opt_.finite_rotation_update && !s.solve_failed) finite_rotation_body(b);
+        });
+        if (s.solve_failed) return;
+        timed(s.elements, [&] {
+          kinematics_body(b);
+          evaluate_body(b, systems_[b].needs_refresh);
+        });
+        if (opt_.check_finite) {
+          for (int n : systems_[b].nodes) s.not_finite = s.not_finite || !Du_.segment<6>(6 * n).allFinite();
+          if (s.not_finite) return;
+        }
+        commit_body(b, s);
       });
-      kinematics();
-      timed(timings_.elements, [&] { evaluate_elements(false); });
-      if (carry) {
-        // Carry-over: the contact forces applied over this step are those of the predictor (fc1_);
-        // the unbalance left by the solve enters the next step's residual, so neither the contact
-        // forces nor the residual are evaluated again here (half the contact cost).
-        info.iterations = 1;
-        if (opt_.check_finite && !Du_.allFinite())
-          throw SimulationError(t1, "the displacement increment is not finite: " + non_finite_diagnosis());
-        break;
-      }
-      timed(timings_.contact, [&] { contact_forces(t1, fc1_); });
-      rel = residual(fext1_);
-      info.iterations = it + 1;
+      info.iterations = 1;
+      info.converged = true;
+      const BodyStepSums total = sum_bodies(t1);
+      info.residual = std::sqrt(total.residual_num / std::max(total.residual_den, 1e-300));
+      info.refreshed_bodies = total.refreshed;
+      info.shifted_points = total.shifted;
+    } else {
+      body_sweep([&](int b) { residual_body(systems_[b], fext1_, sums_[b].residual_num, sums_[b].residual_den); });
+      double rel = sum_bodies(t1).residual();
       info.residual = rel;
-      if (opt_.check_finite && !std::isfinite(rel))
-        throw SimulationError(t1, "the residual is not finite (NaN or infinity) after iteration " +
-                                      std::to_string(it + 1) + ": the step diverged; try a smaller dt");
-      if (integrator_.mode == EquilibriumMode::iterate && rel < opt_.tolerance) break;
+      for (int it = 0; it < opt_.max_iterations; ++it) {
+        body_sweep([&](int b) {
+          BodyStepSums& s = sums_[b];
+          timed(s.solve, [&] {
+            solve_body(b, s);
+            if (it == 0 && opt_.finite_rotation_update && !s.solve_failed) finite_rotation_body(b);
+          });
+          if (s.solve_failed) return;
+          timed(s.elements, [&] {
+            kinematics_body(b);
+            evaluate_body(b, systems_[b].needs_refresh);
+          });
+        });
+        info.refreshed_bodies += sum_bodies(t1).refreshed;
+        timed(timings_.contact, [&] { contact_forces(t1, v_, fc1_); });
+        body_sweep([&](int b) { residual_body(systems_[b], fext1_, sums_[b].residual_num, sums_[b].residual_den); });
+        rel = sum_bodies(t1).residual();
+        info.iterations = it + 1;
+        info.residual = rel;
+        if (opt_.check_finite && !std::isfinite(rel))
+          throw SimulationError(t1, "the residual is not finite (NaN or infinity) after iteration " +
+                                        std::to_string(it + 1) + ": the step diverged; try a smaller dt");
+        if (rel < opt_.tolerance) break;
+      }
+      info.converged = rel < opt_.tolerance;
+      body_sweep([&](int b) { commit_body(b, sums_[b]); });
+      info.shifted_points = sum_bodies(t1).shifted;
     }
-    info.converged = integrator_.mode == EquilibriumMode::carry_over || rel < opt_.tolerance;
-    // Energy ledger: trapezoidal work of the forces over the step's displacement increment.
-    for (int n = 0; n < model_.num_nodes(); ++n) {
-      const auto du = Du_.segment<6>(6 * n);
-      ledger_.external_work += 0.5 * du.dot(fext0_.segment<6>(6 * n) + fext1_.segment<6>(6 * n) -
-                                            fgrav_.segment<6>(6 * n) * 2.0);
-      ledger_.contact_work += 0.5 * du.dot(fc0_.segment<6>(6 * n) + fc1_.segment<6>(6 * n));
-      if (opt_.mass_damping > 0)
-        ledger_.damping_work -= 0.5 * opt_.mass_damping *
-                                du.dot((mass_.segment<6>(6 * n).array() * (vn_.segment<6>(6 * n) + v_.segment<6>(6 * n)).array()).matrix());
-    }
-    // Commit element histories, then apply the ASI rule (integration points move for the next step).
-    committed_.swap(trial_);
-    info.shifted_points = shift_integration_points();
     if constexpr (requires { contact_.commit(); }) contact_.commit();
-    fext0_ = fext1_;
-    fc0_ = fc1_;
-    fnet0_ = fext1_ + fc1_ - fint_;
     t_ = t1;
     ++steps_;
-    for (auto& bs : systems_) ++bs.steps_since_refresh;
     return info;
   }
 
@@ -444,11 +444,14 @@ class Simulation {
     const int nn = model_.num_nodes(), ne = model_.num_elements();
     x_.resize(nn);
     u_.assign(nn, Vec3::Zero());
+    u0_.assign(nn, Vec3::Zero());
     R_.assign(nn, Mat3::Identity());
+    R0_.assign(nn, Mat3::Identity());
     for (int n = 0; n < nn; ++n) x_[n] = model_.node(n).X;
     v_.setZero(6 * nn);
     a_.setZero(6 * nn);
-    for (auto* v : {&Du_, &fint_, &fext0_, &fext1_, &fc0_, &fc1_, &fnet0_, &mass_, &nodal_load_, &fgrav_, &r_})
+    for (auto* v : {&vn_, &an_, &v_contact_, &Du_, &fint_, &fext0_, &fext1_, &fc0_, &fc1_, &fnet0_, &mass_, &nodal_load_,
+                    &fgrav_, &r_})
       v->setZero(6 * nn);
     props_.resize(ne);
     E0_.resize(ne);
@@ -479,6 +482,7 @@ class Simulation {
                          "' has no mass (its elements have zero line mass) and is not fixed");
     local_index_.assign(nn, -1);
     systems_.resize(model_.num_bodies());
+    sums_.assign(model_.num_bodies(), {});
     solvers_.resize(model_.num_bodies());
     for (int b = 0; b < model_.num_bodies(); ++b) {
       auto& bs = systems_[b];
@@ -509,7 +513,7 @@ class Simulation {
     committed_ = trial_;
     if (static_) return;
     external_forces(t_, fext0_);
-    contact_forces(t_, fc0_);
+    contact_forces(t_, v_, fc0_);
     fnet0_ = fext0_ + fc0_ - fint_;
     for (int i = 0; i < a_.size(); ++i) a_[i] = is_fixed(i) ? 0.0 : fnet0_[i] / mass_[i];
     ledger_.initial_total = energy().total();
@@ -517,25 +521,45 @@ class Simulation {
 
   bool is_fixed(int dof) const { return (model_.node(dof / 6).fixed >> (dof % 6)) & 1u; }
 
-  void external_forces(double t, Eigen::VectorXd& f) {
-    const Vec3 at = table_acc_ ? table_acc_(t) : Vec3::Zero();
-    const double scale = static_ ? load_factor_ : (load_scale_ ? load_scale_(t) : 1.0);
-    for (int n = 0; n < model_.num_nodes(); ++n) {
-      const double m = mass_[6 * n];
-      fgrav_.segment<3>(6 * n) = m * opt_.gravity * (static_ ? load_factor_ : 1.0);
-      f.segment<3>(6 * n) = fgrav_.segment<3>(6 * n) - (static_ ? Vec3::Zero() : Vec3(m * at));
-      f.segment<3>(6 * n + 3).setZero();
+  // What the loads are at time t: the table's acceleration, the scale of the nodal loads and spring
+  // targets, and the factor on gravity (statics ramps it with the load factor). Evaluated once per
+  // step on the calling thread: the time functions need not be thread-safe.
+  struct Loads {
+    Vec3 table_acc = Vec3::Zero();
+    double scale = 1, gravity_factor = 1;
+  };
+  Loads loads_at(double t) const {
+    Loads l;
+    if (static_) {
+      l.scale = l.gravity_factor = load_factor_;
+      return l;
     }
-    f += scale * nodal_load_;
+    if (table_acc_) l.table_acc = table_acc_(t);
+    if (load_scale_) l.scale = load_scale_(t);
+    return l;
+  }
+  void external_forces(double t, Eigen::VectorXd& f) {
+    const Loads loads = loads_at(t);
+    for (int b = 0; b < model_.num_bodies(); ++b) external_forces_body(b, loads, f);
+  }
+  void external_forces_body(int b, const Loads& loads, Eigen::VectorXd& f) {
+    for (int n : systems_[b].nodes) {
+      const double m = mass_[6 * n];
+      fgrav_.segment<3>(6 * n) = m * opt_.gravity * loads.gravity_factor;
+      f.segment<3>(6 * n) = fgrav_.segment<3>(6 * n) - Vec3(m * loads.table_acc);
+      f.segment<3>(6 * n + 3).setZero();
+      f.segment<6>(6 * n) += loads.scale * nodal_load_.segment<6>(6 * n);
+    }
     // A support spring's force k (scale target - u) is split: k scale target is a load (so that a step
     // sees its target at t_{n+1} from its first residual on, in carry-over mode too), k u is internal.
-    for (const auto& sp : springs_) f[6 * sp.node + sp.dof] += scale * sp.k * sp.target;
+    for (const auto& sp : springs_)
+      if (model_.node(sp.node).body == b) f[6 * sp.node + sp.dof] += loads.scale * sp.k * sp.target;
   }
 
-  void contact_forces(double t, Eigen::VectorXd& f) {
+  void contact_forces(double t, const Eigen::VectorXd& v, Eigen::VectorXd& f) {
     f.setZero();
     if constexpr (!std::is_same_v<Contact, NoContact>) {
-      const ContactView view{model_, x_, v_, t, opt_.dt};
+      const ContactView view{model_, x_, v, t, opt_.dt};
       contact_.add_forces(view, f);
     }
   }
@@ -615,21 +639,145 @@ class Simulation {
     }
   }
 
-  // Residual of the generalized-alpha equations; returns its norm relative to the force scale.
-  double residual(const Eigen::VectorXd& fext1) {
-    const double am = coef_.alpha_m, af = coef_.alpha_f, c = opt_.mass_damping;
-    double num = 0, den = 0;
-    for (int i = 0; i < r_.size(); ++i) {
-      const double f1 = fext1[i] + fc1_[i] - fint_[i];
-      const double inertia = mass_[i] * ((1 - am) * a_[i] + am * an_[i]);
-      const double damping = c * mass_[i] * ((1 - af) * v_[i] + af * vn_[i]);
-      const double ri = is_fixed(i) ? 0.0 : (1 - af) * f1 + af * fnet0_[i] - inertia - damping;
-      r_[i] = ri;
-      num += ri * ri;
-      den += fext1[i] * fext1[i] + fint_[i] * fint_[i] + inertia * inertia + fc1_[i] * fc1_[i];
+  // What one body's part of a step produced; summed over the bodies (in body order, so the sums do not
+  // depend on the threads' schedule) after each sweep.
+  struct BodyStepSums {
+    double residual_num = 0, residual_den = 0;  // squared norms of the residual and of the force scale
+    double external_work = 0, contact_work = 0, damping_work = 0;
+    double solve = 0, factorize = 0, elements = 0;  // seconds
+    int refreshed = 0, shifted = 0;
+    bool solve_failed = false, not_finite = false;
+    double residual() const { return std::sqrt(residual_num / std::max(residual_den, 1e-300)); }
+    BodyStepSums& operator+=(const BodyStepSums& o) {
+      residual_num += o.residual_num;
+      residual_den += o.residual_den;
+      external_work += o.external_work;
+      contact_work += o.contact_work;
+      damping_work += o.damping_work;
+      solve += o.solve;
+      factorize += o.factorize;
+      elements += o.elements;
+      refreshed += o.refreshed;
+      shifted += o.shifted;
+      solve_failed = solve_failed || o.solve_failed;
+      not_finite = not_finite || o.not_finite;
+      return *this;
     }
-    return std::sqrt(num / std::max(den, 1e-300));
+  };
+
+  template <class F>
+  void body_sweep(F&& f) {
+    timed(timings_.bodies, [&] { detail::parallel_for(body_order_, opt_.threads, f); });
   }
+
+  // Sums (and clears) what the bodies produced since the last call: the timings and the energy ledger
+  // are accumulated; a failed solve or a non-finite increment stops the step with a diagnosis.
+  BodyStepSums sum_bodies(double t) {
+    BodyStepSums total;
+    for (auto& s : sums_) {
+      total += s;
+      s = {};
+    }
+    timings_.solve += total.solve;
+    timings_.factorize += total.factorize;
+    timings_.elements += total.elements;
+    ledger_.external_work += total.external_work;
+    ledger_.contact_work += total.contact_work;
+    ledger_.damping_work += total.damping_work;
+    if (total.solve_failed)
+      throw SimulationError(t_, "the linear solver failed: the effective matrix is not positive definite or the "
+                                "solution is not finite (an unsupported static model, or a diverging step)");
+    if (total.not_finite)
+      throw SimulationError(t, "the displacement increment is not finite: " + non_finite_diagnosis());
+    return total;
+  }
+
+  // Residual of the generalized-alpha equations on one body's DOFs (into r_), and the body's shares
+  // of its squared norm and of the squared force scale.
+  void residual_body(const detail::BodySystem& bs, const Eigen::VectorXd& fext1, double& num, double& den) {
+    const double am = coef_.alpha_m, af = coef_.alpha_f, c = opt_.mass_damping;
+    for (size_t k = 0; k < bs.nodes.size(); ++k)
+      for (int j = 0; j < 6; ++j) {
+        const int i = 6 * bs.nodes[k] + j;
+        const double f1 = fext1[i] + fc1_[i] - fint_[i];
+        const double inertia = mass_[i] * ((1 - am) * a_[i] + am * an_[i]);
+        const double damping = c * mass_[i] * ((1 - af) * v_[i] + af * vn_[i]);
+        const double ri = bs.fixed[6 * k + j] ? 0.0 : (1 - af) * f1 + af * fnet0_[i] - inertia - damping;
+        r_[i] = ri;
+        num += ri * ri;
+        den += fext1[i] * fext1[i] + fint_[i] * fint_[i] + inertia * inertia + fc1_[i] * fc1_[i];
+      }
+  }
+  // The whole residual (for diagnoses); returns its norm relative to the force scale.
+  double residual() {
+    BodyStepSums s;
+    for (const auto& bs : systems_) residual_body(bs, fext1_, s.residual_num, s.residual_den);
+    return s.residual();
+  }
+
+  // The start of a body's step: the state at t_n kept, the predictor "no motion" (Du = 0) with its
+  // Newmark velocity and acceleration, the velocity contact sees, and the loads at t_{n+1}.
+  void predict_body(int b, const Loads& loads) {
+    auto& bs = systems_[b];
+    const double dt = opt_.dt;
+    for (int n : bs.nodes) {
+      const int i = 6 * n;
+      u0_[n] = u_[n];
+      R0_[n] = R_[n];
+      vn_.segment<6>(i) = v_.segment<6>(i);
+      an_.segment<6>(i) = a_.segment<6>(i);
+      Du_.segment<6>(i).setZero();
+      v_contact_.segment<6>(i) = vn_.segment<6>(i) + dt * an_.segment<6>(i);
+    }
+    kinematics_body(b, false);  // positions stay: Du = 0
+    if (bs.rigid) {
+      bs.rigid_c0 = mass_centre(bs);
+      bs.rigid_dc.setZero();
+      bs.rigid_Q.setIdentity();
+    }
+    external_forces_body(b, loads, fext1_);
+  }
+
+  // Newmark's velocity and acceleration from the increment Du, and (positions) the nodes' placement.
+  void kinematics_body(int b, bool positions = true) {
+    const double dt = opt_.dt, be = coef_.beta, g = coef_.gamma;
+    for (int n : systems_[b].nodes) {
+      const int i = 6 * n;
+      a_.segment<6>(i) = (Du_.segment<6>(i) - dt * vn_.segment<6>(i) - dt * dt * (0.5 - be) * an_.segment<6>(i)) /
+                         (be * dt * dt);
+      v_.segment<6>(i) = vn_.segment<6>(i) + dt * ((1 - g) * an_.segment<6>(i) + g * a_.segment<6>(i));
+      if (!positions) continue;
+      u_[n] = u0_[n] + Du_.segment<3>(i);
+      x_[n] = model_.node(n).X + u_[n];
+      R_[n] = detail::rotation_exp(Du_.segment<3>(i + 3)) * R0_[n];
+    }
+  }
+
+  // The end of a body's step: the work of the forces over the increment (trapezoidal), the element
+  // histories committed, the ASI rule applied (integration points move for the next step), and the
+  // forces the next step starts from.
+  void commit_body(int b, BodyStepSums& s) {
+    auto& bs = systems_[b];
+    for (int n : bs.nodes) {
+      const int i = 6 * n;
+      const auto du = Du_.segment<6>(i);
+      s.external_work += 0.5 * du.dot(fext0_.segment<6>(i) + fext1_.segment<6>(i) - fgrav_.segment<6>(i) * 2.0);
+      s.contact_work += 0.5 * du.dot(fc0_.segment<6>(i) + fc1_.segment<6>(i));
+      if (opt_.mass_damping > 0)
+        s.damping_work -= 0.5 * opt_.mass_damping *
+                          du.dot((mass_.segment<6>(i).array() * (vn_.segment<6>(i) + v_.segment<6>(i)).array()).matrix());
+    }
+    for (int e : bs.elements) std::swap(committed_[e], trial_[e]);
+    s.shifted += shift_integration_points(b);
+    for (int n : bs.nodes) {
+      const int i = 6 * n;
+      fext0_.segment<6>(i) = fext1_.segment<6>(i);
+      fc0_.segment<6>(i) = fc1_.segment<6>(i);
+      fnet0_.segment<6>(i) = fext1_.segment<6>(i) + fc1_.segment<6>(i) - fint_.segment<6>(i);
+    }
+    ++bs.steps_since_refresh;
+  }
+
   double static_residual() {
     double num = 0, den = 0;
     for (int i = 0; i < r_.size(); ++i) {
@@ -641,72 +789,59 @@ class Simulation {
     return std::sqrt(num / std::max(den, 1e-300));
   }
 
-  // Solves every body's system for the residual r_ and adds the result to Du_. Returns the number
-  // of bodies whose matrix was refreshed.
+  // Solves every body's system for the residual r_ and adds the result to Du_ (statics). Returns the
+  // number of bodies whose matrix was refreshed.
   int solve_bodies() {
-    int refreshed = 0;
-    for (auto& bs : systems_)
-      if (bs.steps_since_refresh >= opt_.refresh_interval) bs.needs_refresh = true;
-    bool any = false;
-    for (auto& bs : systems_) any = any || (bs.needs_refresh && !bs.assembled);
-    if (any)
-      detail::parallel_for(body_order_, opt_.threads, [&](int b) {
-        if (systems_[b].needs_refresh && !systems_[b].assembled) evaluate_body(b, true);
-      });
-    std::atomic<bool> failed{false};
-    std::atomic<int> refreshed_count{0};
-    detail::parallel_for(body_order_, opt_.threads, [&](int b) {
-      auto& bs = systems_[b];
-      if (bs.rigid) {
-        if (static_) {
-          failed = true;
-          return;
-        }
-        solve_rigid(bs);
-        bs.needs_refresh = false;
-        bs.assembled = false;
+    body_sweep([&](int b) { solve_body(b, sums_[b]); });
+    return sum_bodies(t_).refreshed;
+  }
+
+  // Solves one body's system for its part of the residual r_ and adds the result to Du_, refreshing
+  // (assembling and factorising) its matrix first when it is due.
+  void solve_body(int b, BodyStepSums& s) {
+    auto& bs = systems_[b];
+    if (bs.steps_since_refresh >= opt_.refresh_interval) bs.needs_refresh = true;
+    if (bs.needs_refresh && !bs.assembled) evaluate_body(b, true);
+    if (bs.rigid) {
+      if (static_) {
+        s.solve_failed = true;
         return;
       }
-      const bool reuse = opt_.refresh_interval > 1 && !static_;
-      Mat3 Q = Mat3::Identity();
-      if (reuse) Q = body_rotation(bs);
-      if (bs.needs_refresh) {
-        try {
-          const auto t0 = std::chrono::steady_clock::now();
-          solvers_[b]->factorize(bs.K);
-          const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-          const std::lock_guard<std::mutex> lock(timing_mutex_);
-          timings_.factorize += spent;
-        } catch (const std::exception&) {
-          failed = true;
-          return;
-        }
-        bs.Q_factor = Q;
-        bs.needs_refresh = false;
-        bs.assembled = false;
-        bs.steps_since_refresh = 0;
-        ++refreshed_count;
+      solve_rigid(bs);
+      bs.needs_refresh = false;
+      bs.assembled = false;
+      return;
+    }
+    const bool reuse = opt_.refresh_interval > 1 && !static_;
+    Mat3 Q = Mat3::Identity();
+    if (reuse) Q = body_rotation(bs);
+    if (bs.needs_refresh) {
+      try {
+        timed(s.factorize, [&] { solvers_[b]->factorize(bs.K); });
+      } catch (const std::exception&) {
+        s.solve_failed = true;
+        return;
       }
-      // Take the body's rigid rotation since the factorisation out of the right-hand side (P^T r),
-      // solve with the old matrix, put it back (P y): exact for a rigidly rotated body.
-      const Mat3 P = Q * bs.Q_factor.transpose();
-      for (size_t k = 0; k < bs.nodes.size(); ++k) {
-        const int g = bs.nodes[k];
-        bs.r.segment<3>(6 * k) = P.transpose() * r_.segment<3>(6 * g);
-        bs.r.segment<3>(6 * k + 3) = P.transpose() * r_.segment<3>(6 * g + 3);
-      }
-      if (!solvers_[b]->solve(bs.r, bs.dx)) failed = true;
-      for (size_t k = 0; k < bs.nodes.size(); ++k) {
-        const int g = bs.nodes[k];
-        Du_.segment<3>(6 * g) += P * bs.dx.segment<3>(6 * k);
-        Du_.segment<3>(6 * g + 3) += P * bs.dx.segment<3>(6 * k + 3);
-      }
-    });
-    refreshed = refreshed_count;
-    if (failed)
-      throw SimulationError(t_, "the linear solver failed: the effective matrix is not positive definite or the "
-                                "solution is not finite (an unsupported static model, or a diverging step)");
-    return refreshed;
+      bs.Q_factor = Q;
+      bs.needs_refresh = false;
+      bs.assembled = false;
+      bs.steps_since_refresh = 0;
+      ++s.refreshed;
+    }
+    // Take the body's rigid rotation since the factorisation out of the right-hand side (P^T r),
+    // solve with the old matrix, put it back (P y): exact for a rigidly rotated body.
+    const Mat3 P = Q * bs.Q_factor.transpose();
+    for (size_t k = 0; k < bs.nodes.size(); ++k) {
+      const int g = bs.nodes[k];
+      bs.r.segment<3>(6 * k) = P.transpose() * r_.segment<3>(6 * g);
+      bs.r.segment<3>(6 * k + 3) = P.transpose() * r_.segment<3>(6 * g + 3);
+    }
+    if (!solvers_[b]->solve(bs.r, bs.dx)) s.solve_failed = true;
+    for (size_t k = 0; k < bs.nodes.size(); ++k) {
+      const int g = bs.nodes[k];
+      Du_.segment<3>(6 * g) += P * bs.dx.segment<3>(6 * k);
+      Du_.segment<3>(6 * g + 3) += P * bs.dx.segment<3>(6 * k + 3);
+    }
   }
 
   // The linear solve moves the nodes of a turning body along tangents: each member stretches by
@@ -717,37 +852,35 @@ class Simulation {
   // translation gets (exp(theta) - I - [theta]x)(x0 - c), exact for a rigid turn and O(theta^2) for
   // the rest. Bodies with a fixed DOF (they do not turn freely) and rigid bodies (solved on the finite
   // rotation already) are left as they are.
-  void finite_rotation_update() {
-    detail::parallel_for(body_order_, opt_.threads, [&](int b) {
-      const auto& bs = systems_[b];
-      if (bs.rigid || bs.nodes.size() < 2) return;
-      for (char f : bs.fixed)
-        if (f) return;
-      Vec3 c = Vec3::Zero(), dc = Vec3::Zero();
-      double m = 0;
-      for (int n : bs.nodes) {
-        c += mass_[6 * n] * x_[n];
-        dc += mass_[6 * n] * Du_.segment<3>(6 * n);
-        m += mass_[6 * n];
-      }
-      c /= m;
-      dc /= m;
-      // The body's rotation increment: the least-squares rigid turn of the translational increments
-      // about the mass centre, J theta = sum m r x (du - dc).
-      Mat3 J = Mat3::Zero();
-      Vec3 h = Vec3::Zero();
-      for (int n : bs.nodes) {
-        const Vec3 r = x_[n] - c;
-        J += mass_[6 * n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
-        h += mass_[6 * n] * r.cross(Du_.segment<3>(6 * n) - dc);
-      }
-      const Eigen::LDLT<Mat3> ldlt(J);
-      if (ldlt.info() != Eigen::Success || ldlt.rcond() < 1e-9) return;  // a straight bar: no unique turn
-      const Vec3 theta = ldlt.solve(h);
-      if (!theta.allFinite() || theta.norm() < 1e-12) return;
-      const Mat3 C = detail::rotation_exp(theta) - Mat3::Identity() - detail::skew(theta);
-      for (int n : bs.nodes) Du_.segment<3>(6 * n) += C * (x_[n] - c);
-    });
+  void finite_rotation_body(int b) {
+    const auto& bs = systems_[b];
+    if (bs.rigid || bs.nodes.size() < 2) return;
+    for (char f : bs.fixed)
+      if (f) return;
+    Vec3 c = Vec3::Zero(), dc = Vec3::Zero();
+    double m = 0;
+    for (int n : bs.nodes) {
+      c += mass_[6 * n] * x_[n];
+      dc += mass_[6 * n] * Du_.segment<3>(6 * n);
+      m += mass_[6 * n];
+    }
+    c /= m;
+    dc /= m;
+    // The body's rotation increment: the least-squares rigid turn of the translational increments
+    // about the mass centre, J theta = sum m r x (du - dc).
+    Mat3 J = Mat3::Zero();
+    Vec3 h = Vec3::Zero();
+    for (int n : bs.nodes) {
+      const Vec3 r = x_[n] - c;
+      J += mass_[6 * n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
+      h += mass_[6 * n] * r.cross(Du_.segment<3>(6 * n) - dc);
+    }
+    const Eigen::LDLT<Mat3> ldlt(J);
+    if (ldlt.info() != Eigen::Success || ldlt.rcond() < 1e-9) return;  // a straight bar: no unique turn
+    const Vec3 theta = ldlt.solve(h);
+    if (!theta.allFinite() || theta.norm() < 1e-12) return;
+    const Mat3 C = detail::rotation_exp(theta) - Mat3::Identity() - detail::skew(theta);
+    for (int n : bs.nodes) Du_.segment<3>(6 * n) += C * (x_[n] - c);
   }
 
   Vec3 mass_centre(const detail::BodySystem& bs) const {
@@ -822,27 +955,35 @@ class Simulation {
         [&](int i) { return std::pair<Vec3, Vec3>(model_.node(bs.nodes[i]).X, x_[bs.nodes[i]]); }, bs.Xc, xc);
   }
 
-  int shift_integration_points() {
+  // The ASI rule on one body's elements, from their committed states: returns how many integration
+  // points moved. A body with a moved point has its forces evaluated again at the new points (so the
+  // next residual sees them) and its matrix refreshed; the other bodies are not touched.
+  int shift_integration_points(int b) {
     int shifted = 0;
     if constexpr (requires(State s) { s.hinge; s.plastic_increment; }) {
+      auto& bs = systems_[b];
       int skip = -1;  // a partner whose point was just moved: its d_ and new s are not in equilibrium yet
-      for (int e = 0; e < model_.num_elements(); ++e) {
+      for (int e : bs.elements) {
         if (e == skip) continue;  // checked at the next step, from forces at its new point
-        const int p = model_.elements()[e].partner;
+        const int p = model_.elements()[e].partner;  // pairs are consecutive elements of one member
         State* partner = p >= 0 ? &committed_[p] : nullptr;
         const ElementProps* pp = p >= 0 ? &props_[p] : nullptr;
         if (Element::shift_integration_point(props_[e], committed_[e], d_[e], partner, pp)) {
           ++shifted;
-          systems_[model_.elements()[e].body].needs_refresh = true;
+          bs.needs_refresh = true;
           if (p > e) skip = p;
         }
       }
       if (shifted) {
-        // Forces at the new integration points, so the next residual sees them.
-        evaluate_elements(false);
-        committed_ = trial_;
+        evaluate_body(b, bs.needs_refresh);
+        for (int e : bs.elements) committed_[e] = trial_[e];
       }
     }
+    return shifted;
+  }
+  int shift_integration_points() {
+    int shifted = 0;
+    for (int b = 0; b < model_.num_bodies(); ++b) shifted += shift_integration_points(b);
     return shifted;
   }
 
@@ -871,7 +1012,7 @@ class Simulation {
 
   std::vector<Vec3> x_, u_, u0_;  // positions, displacements (kept apart for precision)
   std::vector<Mat3> R_, R0_;
-  Eigen::VectorXd v_, a_, vn_, an_, Du_, r_, fint_, fext0_, fext1_, fc0_, fc1_, fnet0_, mass_, nodal_load_, fgrav_;
+  Eigen::VectorXd v_, a_, vn_, an_, v_contact_, Du_, r_, fint_, fext0_, fext1_, fc0_, fc1_, fnet0_, mass_, nodal_load_, fgrav_;
   std::vector<ElementProps> props_;
   std::vector<Mat3> E0_, frames_;
   std::vector<Vec12> d_, fl_;
@@ -881,7 +1022,7 @@ class Simulation {
   std::vector<std::unique_ptr<LinearSolver>> solvers_;  // Eigen's solvers are not copyable
   EnergyLedger ledger_;
   StepTimings timings_;
-  std::mutex timing_mutex_;
+  std::vector<BodyStepSums> sums_;  // each body's part of the current step
   std::vector<int> body_order_;  // bodies by decreasing size: the largest starts first in parallel loops
   template <class F>
   void timed(double& acc, F&& f) {

@@ -14,6 +14,7 @@
 #include <string_view>
 
 #include "detail/errors.hpp"
+#include "detail/supernodal_factor.hpp"
 
 namespace furniture_fem {
 
@@ -29,7 +30,9 @@ concept LinearSolverPolicy = std::default_initializable<S> &&
 };
 
 // Sparse direct LDL^T (Eigen's simplicial, AMD ordering). The symbolic analysis is done once per
-// pattern; the numeric factorisation is redone only when the simulation refreshes the matrix.
+// pattern; the numeric factorisation is redone only when the simulation refreshes the matrix, and its
+// factor is then repacked into dense supernodes (detail/supernodal_factor.hpp) for the many
+// substitutions that reuse it.
 class DirectLdltSolver {
  public:
   static constexpr std::string_view name = "sparse direct LDL^T (reused)";
@@ -39,16 +42,26 @@ class DirectLdltSolver {
     if (ldlt_.info() != Eigen::Success)
       throw SimulationError(0, "sparse LDL^T factorisation failed: the effective matrix is not positive definite "
                                "(a free body without mass, or an unconstrained static model?)");
+    factor_.assign(ldlt_.matrixL().nestedExpression());
     ++factorizations_;
   }
+  // x = P^T L^-T D^-1 L^-1 P r, what Eigen's solve computes, with the repacked factor.
   bool solve(const Eigen::VectorXd& r, Eigen::VectorXd& x) {
-    x = ldlt_.solve(r);
-    return ldlt_.info() == Eigen::Success && x.allFinite();
+    if (ldlt_.info() != Eigen::Success || ldlt_.vectorD().size() != r.size()) return false;
+    work_ = ldlt_.permutationP() * r;
+    factor_.solve_lower(work_);
+    work_.array() /= ldlt_.vectorD().array();
+    factor_.solve_upper(work_);
+    x = ldlt_.permutationPinv() * work_;
+    return x.allFinite();
   }
   long factorizations() const { return factorizations_; }
+  const detail::SupernodalFactor& factor() const { return factor_; }
 
  private:
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> ldlt_;
+  detail::SupernodalFactor factor_;
+  Eigen::VectorXd work_;
   long factorizations_ = 0;
 };
 
