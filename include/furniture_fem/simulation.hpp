@@ -235,7 +235,7 @@ class Simulation {
     StepInfo info;
     // Predictor "no motion" (Du = 0) and the loads at t_{n+1}. Its element forces are the last step's.
     const Loads loads = loads_at(t1);
-    timed(timings_.bodies, [&] { detail::parallel_for(body_order_, opt_.threads, [&](int b) { predict_body(b, loads); }); });
+    body_sweep([&](int b) { predict_body(b, loads); });
     // The predictor's Newmark velocity, (1 - gamma / beta) v_n, has the wrong sign, and friction or the
     // paper's damping evaluated there would pump energy: contact sees v_n + dt a_n (v_contact_) instead.
     timed(timings_.contact, [&] { contact_forces(t1, v_contact_, fc1_); });
@@ -250,16 +250,8 @@ class Simulation {
       // the residual are evaluated again (half the contact cost), and each body is done in one go.
       body_sweep([&](int b) {
         BodyStepSums& s = sums_[b];
-        timed(s.solve, [&] {
-          residual_body(systems_[b], fext1_, s.residual_num, s.residual_den);
-          solve_body(b, s);
-          if (opt_.finite_rotation_update && !s.solve_failed) finite_rotation_body(b);
-        });
-        if (s.solve_failed) return;
-        timed(s.elements, [&] {
-          kinematics_body(b);
-          evaluate_body(b, systems_[b].needs_refresh);
-        });
+        timed(s.solve, [&] { residual_body(systems_[b], fext1_, s.residual_num, s.residual_den); });
+        if (!update_body(b, s, true)) return;
         if (opt_.check_finite) {
           for (int n : systems_[b].nodes) s.not_finite = s.not_finite || !Du_.segment<6>(6 * n).allFinite();
           if (s.not_finite) return;
@@ -269,7 +261,7 @@ class Simulation {
       info.iterations = 1;
       info.converged = true;
       const BodyStepSums total = sum_bodies(t1);
-      info.residual = std::sqrt(total.residual_num / std::max(total.residual_den, 1e-300));
+      info.residual = total.residual();
       info.refreshed_bodies = total.refreshed;
       info.shifted_points = total.shifted;
     } else {
@@ -277,18 +269,7 @@ class Simulation {
       double rel = sum_bodies(t1).residual();
       info.residual = rel;
       for (int it = 0; it < opt_.max_iterations; ++it) {
-        body_sweep([&](int b) {
-          BodyStepSums& s = sums_[b];
-          timed(s.solve, [&] {
-            solve_body(b, s);
-            if (it == 0 && opt_.finite_rotation_update && !s.solve_failed) finite_rotation_body(b);
-          });
-          if (s.solve_failed) return;
-          timed(s.elements, [&] {
-            kinematics_body(b);
-            evaluate_body(b, systems_[b].needs_refresh);
-          });
-        });
+        body_sweep([&](int b) { update_body(b, sums_[b], it == 0); });
         info.refreshed_bodies += sum_bodies(t1).refreshed;
         timed(timings_.contact, [&] { contact_forces(t1, v_, fc1_); });
         body_sweep([&](int b) { residual_body(systems_[b], fext1_, sums_[b].residual_num, sums_[b].residual_den); });
@@ -794,6 +775,22 @@ class Simulation {
   int solve_bodies() {
     body_sweep([&](int b) { solve_body(b, sums_[b]); });
     return sum_bodies(t_).refreshed;
+  }
+
+  // A body's update from its residual: the solve (refreshing the matrix when due), on the first solve
+  // of a step the rigid part of the increment put on the finite rotation, then the nodes moved and the
+  // element forces evaluated there. False when the solve failed.
+  bool update_body(int b, BodyStepSums& s, bool first_solve) {
+    timed(s.solve, [&] {
+      solve_body(b, s);
+      if (first_solve && opt_.finite_rotation_update && !s.solve_failed) finite_rotation_body(b);
+    });
+    if (s.solve_failed) return false;
+    timed(s.elements, [&] {
+      kinematics_body(b);
+      evaluate_body(b, systems_[b].needs_refresh);
+    });
+    return true;
   }
 
   // Solves one body's system for its part of the residual r_ and adds the result to Du_, refreshing
