@@ -9,7 +9,8 @@
 // Run: ./build-contact/bench/bench_contact --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
-#include <furniture_fem/contact.hpp>
+#include <furniture_fem/contact/cgal_adapter.hpp>
+#include <furniture_fem/contact/contact_laws.hpp>
 
 #include <random>
 

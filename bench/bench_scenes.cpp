@@ -9,7 +9,7 @@
 // is the main job itself: /usr/bin/time -v ./build/examples/furniture_quake --no-figures (see docs/performance.md).
 #include <benchmark/benchmark.h>
 
-#include <furniture_fem/scene_runner.hpp>
+#include <furniture_fem/scene/scene_runner.hpp>
 
 namespace {
 using namespace furniture_fem;

@@ -5,7 +5,7 @@
 // Run: ./build/bench/bench_solver --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
-#include <furniture_fem/simulation.hpp>
+#include <furniture_fem/core/simulation.hpp>
 
 namespace {
 using namespace furniture_fem;

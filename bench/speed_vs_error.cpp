@@ -21,7 +21,7 @@
 // desk is a finite-element body). Wall time: building the scene and stepping it, one thread.
 //
 // Writes <docs>/speed_vs_error.csv, <docs>/speed_vs_error.md (the table) and
-// <docs>/figures/speed_vs_error.png (wall time against marker RMS error, log-log, Pareto front).
+// <docs>/images/speed_vs_error.png (wall time against marker RMS error, log-log, Pareto front).
 //   cd /work/main && nice -n 10 ./build/bench/speed_vs_error            # the reference alone ~52 min on one core; the CG variant > 40 min
 //   ./build/bench/speed_vs_error --only default,dt_5ms --duration 1     # a subset, for a quick look
 // Options: --docs DIR (default docs), --duration S (3), --pga M_S2 (4.0), --only a,b,c, --list,
@@ -30,8 +30,8 @@
 // --reference-refresh N (1; the reference's
 // factorisation is 86 % of its time: N = 5 makes it about 3 times cheaper, with the body rotation
 // taken out of the reused factorisation at dt = 0.25 ms).
-#include <furniture_fem/plot.hpp>
-#include <furniture_fem/scene_runner.hpp>
+#include <furniture_fem/figures/plot.hpp>
+#include <furniture_fem/scene/scene_runner.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -404,7 +404,7 @@ int main(int argc, char** argv) {
   }
   if (partial) return 0;  // a subset: no files
 
-  fs::create_directories(fs::path(docs) / "figures");
+  fs::create_directories(fs::path(docs) / "images");
   {
     std::ofstream csv(fs::path(docs) / "speed_vs_error.csv");
     csv << "name,family,label,element,dt_s,element_length_m,grid_scale,integrator,iterate,solver,refresh,fidelity,status,"
@@ -458,7 +458,7 @@ int main(int argc, char** argv) {
         p.add(row.r.wall, row.e.rms_mm, row.v.name == "default" ? "default" : "", row.v.family);
         names.push_back(row.v.name);
       }
-    p.save_png((fs::path(docs) / "figures" / "speed_vs_error.png").string(), 900, 560);
+    p.save_png((fs::path(docs) / "images" / "speed_vs_error.png").string(), 900, 560);
     std::printf("Pareto front:");
     for (std::size_t i : p.front()) std::printf(" %s", names[i].c_str());
     std::printf("\n");
@@ -479,7 +479,7 @@ int main(int argc, char** argv) {
       std::printf("the default takes %.2f times the wall time of %s (RMS %.3g mm against %.3g mm)\n",
                   d.r.wall / best->r.wall, best->v.name.c_str(), best->e.rms_mm, d.e.rms_mm);
   }
-  std::printf("wrote %s/speed_vs_error.csv, %s/speed_vs_error.md, %s/figures/speed_vs_error.png\n", docs.c_str(),
+  std::printf("wrote %s/speed_vs_error.csv, %s/speed_vs_error.md, %s/images/speed_vs_error.png\n", docs.c_str(),
               docs.c_str(), docs.c_str());
   return 0;
 }

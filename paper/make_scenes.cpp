@@ -28,8 +28,8 @@
 // 20 steps: the setting the committed results/ were run with; the toolkit's default is 0.1 s, which
 // gives the same errors in docs/performance.md section 4 but, the falls being chaotic, different
 // outcomes here: RESULTS.md, "Sensitivity to the refresh interval").
-#include <furniture_fem/excitation.hpp>
-#include <furniture_fem/scene.hpp>
+#include <furniture_fem/excitation/excitation.hpp>
+#include <furniture_fem/scene/scene.hpp>
 
 #include <algorithm>
 #include <cstdio>

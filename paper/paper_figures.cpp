@@ -14,8 +14,8 @@
 //                              vertical (local z of a top-board line, Qz) and depth (local y, Qy)
 //   fig16_config1_upper_cabinet_x.png  the same as fig16 for configuration 1
 // Displacements are relative to the table, as the paper's motion capture measured them.
-#include <furniture_fem/csv.hpp>
-#include <furniture_fem/plot.hpp>
+#include <furniture_fem/io/csv.hpp>
+#include <furniture_fem/figures/plot.hpp>
 
 #include <nlohmann/json.hpp>
 

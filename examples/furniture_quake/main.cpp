@@ -8,7 +8,7 @@
 //
 // Ctrl-C stops the run cleanly: everything written so far stays readable and the summary says
 // where it stopped.
-#include <furniture_fem/scene_runner.hpp>
+#include <furniture_fem/scene/scene_runner.hpp>
 
 #include <atomic>
 #include <csignal>

@@ -9,7 +9,7 @@
 //      (1 - 1/(4 n^2)) of the bending deflection with n elements;
 //   3. under large loads the beam follows the elastica (Bisshopp & Drucker 1945), because the solver
 //      is geometrically exact (corotational element frames) even though each element is linear.
-#include <furniture_fem/simulation.hpp>
+#include <furniture_fem/core/simulation.hpp>
 
 #include <cstdio>
 

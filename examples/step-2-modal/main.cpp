@@ -9,7 +9,7 @@
 //     torsion  omega = (2k - 1) pi / (2 L) sqrt(G J / (rho Ip)),  axial  (2k - 1) pi / (2 L) sqrt(E / rho).
 // The run closes with a time history: released from a bent shape, the tip oscillates with the first
 // period that the modal analysis predicted.
-#include <furniture_fem/modal.hpp>
+#include <furniture_fem/core/modal.hpp>
 
 #include <cmath>
 #include <cstdio>

@@ -13,7 +13,7 @@
 // column, the frame fails by the sway mechanism with hinges at the bottom and top of both columns
 // (the beam is stronger, so the joints yield in the columns):
 //     P_c = 4 Mp / h,  Mp = sigma_y Zp of the columns' weak axis.
-#include <furniture_fem/simulation.hpp>
+#include <furniture_fem/core/simulation.hpp>
 
 #include <cstdio>
 #include <string>

@@ -12,9 +12,9 @@
 //      only then.
 // The block is solved both as a finite-element body and as a rigid body (set_rigid), which has the
 // same nodes, masses and contact geometry but six degrees of freedom.
-#include <furniture_fem/excitation.hpp>
-#include <furniture_fem/room_contact.hpp>
-#include <furniture_fem/simulation.hpp>
+#include <furniture_fem/excitation/excitation.hpp>
+#include <furniture_fem/contact/room_contact.hpp>
+#include <furniture_fem/core/simulation.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -65,7 +65,7 @@ struct Block {
 //     rigid block:  v_reg > (1 + 2 gamma)/2 * 1.2 g dt                = 3.1 mm/s at dt = 0.2 ms;
 //     FE block:     the same per node, with the node's load over its mass in place of g: a bottom node
 //                   carries W/28 = 3.3 N on 0.12 kg (2.9 g), so v_reg > 9 mm/s at dt = 0.2 ms.
-// Below that the block chatters and never settles (docs/verification_contact.md). A larger v_reg
+// Below that the block chatters and never settles (docs/contact/verification_contact.md). A larger v_reg
 // smooths the friction more: the block passes more slowly through |v| < v_reg when it starts to
 // slide, which lengthens the slip by about mu v_reg / A per second of sliding. 12 mm/s here.
 ContactParams contact_parameters(const Block& b, double mu) {

@@ -2,7 +2,7 @@
 //
 // What is new relative to step-4: the contact law is a template parameter. A law is a type,
 // ContactLaw<Normal, Damping, Friction>, composed of three small policy classes; the presets differ
-// by one part or more (docs/contact.md). One function template runs the scene of step-4 (the rigid
+// by one part or more (docs/contact/contact.md). One function template runs the scene of step-4 (the rigid
 // block under the synthetic earthquake) with any law, so comparing two laws is two instantiations:
 //   PaperLaw      = ContactLaw<PowerPenalty, PaperSignDamping, PaperSignFriction>   (paper eqs. 1-4)
 //   StickSlipLaw  = ContactLaw<PowerPenalty, PaperSignDamping, StickSlip>
@@ -12,10 +12,10 @@
 // mu N, so below mu g the block stays put (but for a fraction of a millimetre of spring and tilt). The
 // reference is Newmark's rigid-plastic sliding block (step-4). The figure, written with plot.hpp's
 // LinePlot, stacks the table acceleration, the slips and their difference.
-#include <furniture_fem/excitation.hpp>
-#include <furniture_fem/plot.hpp>
-#include <furniture_fem/room_contact.hpp>
-#include <furniture_fem/simulation.hpp>
+#include <furniture_fem/excitation/excitation.hpp>
+#include <furniture_fem/figures/plot.hpp>
+#include <furniture_fem/contact/room_contact.hpp>
+#include <furniture_fem/core/simulation.hpp>
 
 #include <cmath>
 #include <cstdio>

@@ -2,7 +2,7 @@
 // and no section_forces(); the concept check in simulation.hpp must stop the compilation with a
 // sentence that names the mistake. The ctest test compile_fail_wrong_element passes only if the
 // compilation fails AND the compiler's output contains "the Element policy must provide".
-#include <furniture_fem/simulation.hpp>
+#include <furniture_fem/core/simulation.hpp>
 
 #include <string_view>
 

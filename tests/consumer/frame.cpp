@@ -1,7 +1,7 @@
 // A consumer's program: include the headers, build a portal frame, push it, check the sway stiffness
 // against the closed form of a fixed-base portal with a rigid-ish beam (within 30%: a smoke test of
 // the installed package, not a verification).
-#include <furniture_fem/simulation.hpp>
+#include <furniture_fem/core/simulation.hpp>
 #include <cstdio>
 
 int main() {

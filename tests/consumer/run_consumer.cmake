@@ -1,14 +1,18 @@
-# Builds and runs a consumer project; used by ctest. Variables: MODE (find_package|subdirectory),
+# Builds and runs a consumer project; used by ctest. Variables: MODE (find_package|subdirectory|core_only),
 # SRC (this folder), BIN (scratch folder), FFEM_SOURCE_DIR, FFEM_BINARY_DIR.
 file(REMOVE_RECURSE ${BIN})
 set(args)
-if(MODE STREQUAL "find_package")
+if(MODE STREQUAL "find_package" OR MODE STREQUAL "core_only")
   execute_process(COMMAND ${CMAKE_COMMAND} --install ${FFEM_BINARY_DIR} --prefix ${BIN}/prefix
                   RESULT_VARIABLE rc)
   if(rc)
     message(FATAL_ERROR "install failed")
   endif()
   set(args -DCMAKE_PREFIX_PATH=${BIN}/prefix)
+  if(MODE STREQUAL "core_only")  # as on a machine with only Eigen: the heavy packages cannot be found
+    list(APPEND args -DCMAKE_DISABLE_FIND_PACKAGE_Boost=ON -DCMAKE_DISABLE_FIND_PACKAGE_CGAL=ON
+                     -DCMAKE_DISABLE_FIND_PACKAGE_nlohmann_json=ON)
+  endif()
 else()
   set(args -DFFEM_SOURCE_DIR=${FFEM_SOURCE_DIR})
 endif()
@@ -24,4 +28,22 @@ endif()
 execute_process(COMMAND ${BIN}/build/frame RESULT_VARIABLE rc)
 if(rc)
   message(FATAL_ERROR "the ${MODE} consumer's program failed")
+endif()
+
+if(MODE STREQUAL "core_only")
+  # The compiler's own list of the headers the program read: none of Boost, CGAL or nlohmann_json.
+  file(GLOB_RECURSE depfiles ${BIN}/build/CMakeFiles/*.o.d)
+  if(NOT depfiles)
+    message(FATAL_ERROR "no dependency file found under ${BIN}/build/CMakeFiles")
+  endif()
+  foreach(f IN LISTS depfiles)
+    file(READ ${f} deps)
+    if(deps MATCHES "/(boost|CGAL|nlohmann)/")
+      message(FATAL_ERROR "the core consumer read a header of ${CMAKE_MATCH_1} (${f})")
+    endif()
+    if(NOT deps MATCHES "furniture_fem/core/simulation.hpp")
+      message(FATAL_ERROR "${f} does not list furniture_fem/core/simulation.hpp: not a dependency file?")
+    endif()
+  endforeach()
+  message(STATUS "core consumer: built with Eigen only")
 endif()

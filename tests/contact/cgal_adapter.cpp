@@ -3,7 +3,8 @@
 // distance to a cube, and the mesh readers' errors.
 #include <catch2/catch.hpp>
 
-#include <furniture_fem/contact.hpp>
+#include <furniture_fem/contact/cgal_adapter.hpp>
+#include <furniture_fem/contact/contact_laws.hpp>
 
 #include <algorithm>
 #include <cstdint>

@@ -2,7 +2,7 @@
 // by golden section on a convex one-parameter function), and the degenerate cases exactly.
 #include <catch2/catch.hpp>
 
-#include <furniture_fem/detail/contact_geometry.hpp>
+#include <furniture_fem/contact/contact_geometry.hpp>
 
 #include <random>
 

@@ -3,7 +3,7 @@
 // creep, anisotropic friction, parameter checks, and two laws compared on the same kinematics.
 #include <catch2/catch.hpp>
 
-#include <furniture_fem/contact_laws.hpp>
+#include <furniture_fem/contact/contact_laws.hpp>
 
 #include <numbers>
 #include <random>
@@ -486,7 +486,7 @@ TEST_CASE("two laws on the same kinematics: PaperLaw against SpringDashpotLaw", 
   CHECK(std::abs(peak_paper - peak_spring) > 0.05 * peak_spring);
 }
 
-// The minimal law of docs/contact.md: a ContactLawPolicy without ContactLaw.
+// The minimal law of docs/contact/contact.md: a ContactLawPolicy without ContactLaw.
 namespace {
 struct ConstantPush {
   double magnitude = 1.0;

@@ -7,8 +7,8 @@
 // No CGAL here: this file includes only the solver and the excitation module.
 #include <catch2/catch.hpp>
 
-#include <furniture_fem/excitation.hpp>
-#include <furniture_fem/simulation.hpp>
+#include <furniture_fem/excitation/excitation.hpp>
+#include <furniture_fem/core/simulation.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -5,8 +5,8 @@
 // Geometry convention: every node's contact distance against a plane is half the width of its
 // narrowest member (RoomContact), 25 mm for the 50 x 30 tube, so a box whose bottom centre lines sit
 // at z = 25 mm just touches the floor (penetration ratio g = 0).
-#include <furniture_fem/room_contact.hpp>
-#include <furniture_fem/simulation.hpp>
+#include <furniture_fem/contact/room_contact.hpp>
+#include <furniture_fem/core/simulation.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -195,7 +195,7 @@ Eigen::VectorXd contact_force_vector(Sim& sim) {
   return f;
 }
 
-// The measured numbers of docs/verification_contact.md: printed when FFEM_REPORT is set
+// The measured numbers of docs/contact/verification_contact.md: printed when FFEM_REPORT is set
 //   FFEM_REPORT=1 ./build-dyn/tests/test_contact_dynamics
 inline void report(const char* format, ...) {
   if (!std::getenv("FFEM_REPORT")) return;

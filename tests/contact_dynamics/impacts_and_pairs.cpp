@@ -6,7 +6,7 @@
 //     (with gravity during the contact: the exact solution of the forced oscillator);
 //  6. two crossing beams (two bodies): contact forces equal and opposite, zero net torque on the
 //     pair, linear momentum of the pair conserved.
-// Measured numbers: docs/verification_contact.md (FFEM_REPORT=1 prints them).
+// Measured numbers: docs/contact/verification_contact.md (FFEM_REPORT=1 prints them).
 #include <catch2/catch.hpp>
 
 #include "dynamics_scenes.hpp"

@@ -2,7 +2,7 @@
 //  3. a rectangular acceleration pulse: residual slip V^2 / (2 mu g) (1 - mu / A), V = A g t0;
 //  4. rocking onset of a tall block at g b / h (and its correction for the penalty's compliance);
 //  7. the same pulse with three contact laws on one scene, each against the closed form.
-// Measured numbers: docs/verification_contact.md (FFEM_REPORT=1 prints them).
+// Measured numbers: docs/contact/verification_contact.md (FFEM_REPORT=1 prints them).
 #include <catch2/catch.hpp>
 
 #include "dynamics_scenes.hpp"

@@ -5,7 +5,7 @@
 //  2. sliding onset: under a table acceleration it sticks at 0.97 mu g and slides at 1.03 mu g, and
 //     a slow ramp finds the onset at mu g; the regularised paper friction creeps instead, at the
 //     speed its regularisation predicts.
-// Measured numbers: docs/verification_contact.md (FFEM_REPORT=1 prints them).
+// Measured numbers: docs/contact/verification_contact.md (FFEM_REPORT=1 prints them).
 #include <catch2/catch.hpp>
 
 #include "dynamics_scenes.hpp"
@@ -50,7 +50,7 @@ TEST_CASE("a block on the floor settles to sum(alpha g) = W and stays at rest fo
            "sum Fz / W - 1 = %.2e, horizontal drift %.2e m, max speed in the last second %.2e m/s",
            rigid ? "rigid" : "FE", int(n), s.box.mass, g_mean, g_closed, g_mean / g_closed - 1, spread, F.z() / s.weight() - 1,
            horizontal, late_speed);
-    // The transient (time constant 1.2 g L / v_reg = 36 ms, docs/contact.md) is gone after 10 s: the
+    // The transient (time constant 1.2 g L / v_reg = 36 ms, docs/contact/contact.md) is gone after 10 s: the
     // measured state is exact to round-off (1e-10 and below), the bounds leave room for it.
     CHECK(std::abs(g_mean / g_closed - 1) < 1e-6);
     CHECK(std::abs(F.z() / s.weight() - 1) < 1e-6);

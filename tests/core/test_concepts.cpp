@@ -1,10 +1,10 @@
-// The minimal policy implementations of docs/concept_element.md, docs/concept_integrator.md and
-// docs/concept_linear_solver.md, verbatim, each composed into a Simulation and checked on a result.
+// The minimal policy implementations of docs/core/concept_element.md, docs/core/concept_integrator.md and
+// docs/core/concept_linear_solver.md, verbatim, each composed into a Simulation and checked on a result.
 // If this file stops compiling, the documents are out of date.
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
-#include <furniture_fem/simulation.hpp>
+#include <furniture_fem/core/simulation.hpp>
 
 #include <cmath>
 #include <numbers>
@@ -13,7 +13,7 @@
 
 using namespace furniture_fem;
 
-// ---- docs/concept_element.md: a minimal Element policy ------------------------------------------
+// ---- docs/core/concept_element.md: a minimal Element policy ------------------------------------------
 // The elastic linear Timoshenko beam with its single integration point at the centre (s = 0). It works
 // in the element's corotated frame: d holds the local deformations [u1 v1 w1 tx1 ty1 tz1 u2 ... tz2]
 // (the frame follows the chord, so v and w are zero and the rotations are relative to the chord).
@@ -51,7 +51,7 @@ struct ElasticCentreTimoshenko {
 };
 static_assert(ElementPolicy<ElasticCentreTimoshenko>);
 
-// ---- docs/concept_integrator.md: a minimal Integrator policy ------------------------------------
+// ---- docs/core/concept_integrator.md: a minimal Integrator policy ------------------------------------
 // Wood-Bossak-Zienkiewicz alpha (alpha_f = 0, alpha_m = alpha in [-1/3, 0]): second order,
 // unconditionally stable, spectral radius at infinity (1 + alpha) / (1 - alpha).
 struct BossakAlpha {
@@ -64,7 +64,7 @@ struct BossakAlpha {
 };
 static_assert(IntegratorPolicy<BossakAlpha>);
 
-// ---- docs/concept_linear_solver.md: a minimal LinearSolver policy --------------------------------
+// ---- docs/core/concept_linear_solver.md: a minimal LinearSolver policy --------------------------------
 // Dense LDL^T of the body's effective matrix: fine for a few hundred DOFs, a reference for others.
 class DenseLdltSolver {
  public:

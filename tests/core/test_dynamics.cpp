@@ -3,8 +3,7 @@
 // (no internal force), and the energy of an undamped cantilever in free vibration.
 #include <catch2/catch.hpp>
 
-#include <furniture_fem/detail/rotation.hpp>
-#include <furniture_fem/simulation.hpp>
+#include <furniture_fem/core/simulation.hpp>
 
 #include <cmath>
 #include <numbers>

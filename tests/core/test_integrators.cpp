@@ -4,8 +4,8 @@
 #include <catch2/catch.hpp>
 
 #include <Eigen/Eigenvalues>
-#include <furniture_fem/odeint_adapter.hpp>
-#include <furniture_fem/simulation.hpp>
+#include <furniture_fem/odeint/odeint_adapter.hpp>
+#include <furniture_fem/core/simulation.hpp>
 
 #include <cmath>
 #include <numbers>

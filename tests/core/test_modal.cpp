@@ -3,7 +3,7 @@
 // 4, 8, 16, 32 elements per member.
 #include <catch2/catch.hpp>
 
-#include <furniture_fem/modal.hpp>
+#include <furniture_fem/core/modal.hpp>
 
 #include <array>
 #include <cmath>

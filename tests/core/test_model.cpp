@@ -2,7 +2,7 @@
 // with a message naming the member / element / node and the offending value.
 #include <catch2/catch.hpp>
 
-#include <furniture_fem/simulation.hpp>
+#include <furniture_fem/core/simulation.hpp>
 
 #include <cmath>
 #include <limits>

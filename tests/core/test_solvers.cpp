@@ -5,7 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
-#include <furniture_fem/solvers.hpp>
+#include <furniture_fem/core/solvers.hpp>
 #include <random>
 
 using namespace furniture_fem;

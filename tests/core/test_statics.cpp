@@ -5,7 +5,7 @@
 
 #include <boost/numeric/odeint/integrate/integrate_const.hpp>
 #include <boost/numeric/odeint/stepper/runge_kutta4.hpp>
-#include <furniture_fem/simulation.hpp>
+#include <furniture_fem/core/simulation.hpp>
 
 #include <vector>
 #include <cmath>

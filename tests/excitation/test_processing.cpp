@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include <furniture_fem/excitation.hpp>
+#include <furniture_fem/excitation/excitation.hpp>
 
 namespace {
 

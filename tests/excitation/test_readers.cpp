@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string>
 
-#include <furniture_fem/excitation.hpp>
+#include <furniture_fem/excitation/excitation.hpp>
 
 namespace {
 

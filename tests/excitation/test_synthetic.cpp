@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include <furniture_fem/excitation.hpp>
+#include <furniture_fem/excitation/excitation.hpp>
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;

@@ -2,7 +2,7 @@
 // markers, Table 4 contact parameters, generic builders' outer dimensions, mesh sanity.
 #include <catch2/catch.hpp>
 
-#include <furniture_fem/furniture.hpp>
+#include <furniture_fem/furniture/furniture.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -187,7 +187,7 @@ TEST_CASE("paper items have the outer dimensions of Table 2", "[furniture][size]
     CHECK(lo.z() == Approx(0).margin(1e-9));
   }
   // Side table and chair: their node layout spans the footprint (contact widths of 170-445 mm
-  // sections reach beyond it; docs/furniture.md).
+  // sections reach beyond it; docs/furniture/furniture.md).
   Model model;
   const auto side = build_side_table(model);
   const auto chair = build_office_chair(model);

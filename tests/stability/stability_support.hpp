@@ -10,7 +10,7 @@
 // and appends it to <build>/tests/tmp/stability/results.csv.
 #include <catch2/catch.hpp>
 
-#include <furniture_fem/scene_runner.hpp>
+#include <furniture_fem/scene/scene_runner.hpp>
 
 #include <chrono>
 #include <cmath>

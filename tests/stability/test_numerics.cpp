@@ -6,7 +6,7 @@
 // Short version (default): a few seconds of simulated time; FFEM_FULL_STABILITY=1: longer runs.
 #include "stability_support.hpp"
 
-#include <furniture_fem/csv.hpp>
+#include <furniture_fem/io/csv.hpp>
 
 using namespace stability;
 

@@ -1,0 +1,326 @@
+#pragma once
+// furniture_fem/contact/room_contact.hpp: the contact policy of a furnished room on a shake table.
+//
+//   RoomContact<Law>  plugs into Simulation<..., Contact = RoomContact<Law>>
+//
+// It applies a contact law (contact_laws.hpp) to three kinds of pairs, all in the table frame:
+//  - node against the floor (z = 0) and against the walls (planes, bounded): l is the node's distance
+//    to the plane and L half the width of the node's widest member (the paper judges floor and wall
+//    contact from nodal coordinates);
+//  - element against element of two different bodies: capsules around the centre lines, l the
+//    distance of the closest points and L the mean member width; candidate pairs come from the CGAL
+//    broad phase (contact.hpp), re-run whenever a node has moved more than half the boxes' margin
+//  - element against rigid triangle-mesh obstacles.
+// Each body carries its own parameters (alpha, Dc, mu on the floor along its longer and shorter edge,
+// mu against walls); between two items the paper's mu between furniture applies, with alpha and Dc
+// the mean of the two items' values (the paper leaves this open; docs/contact/contact.md).
+#include <Eigen/Core>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+#include <vector>
+
+#include "cgal_adapter.hpp"
+#include "contact_laws.hpp"
+#include "../core/simulation.hpp"
+
+namespace furniture_fem {
+
+// Contact parameters of one body (an item of furniture), in SI units.
+struct BodyContact {
+  ContactParams floor;      // alpha, q, Dc, mu (mu_long / mu_short for anisotropic laws)
+  ContactParams wall;
+  ContactParams item;       // its share of item-item contact (alpha, Dc averaged with the other item)
+  int long_axis_node_a = -1, long_axis_node_b = -1;  // two nodes along the item's longer edge
+  std::vector<int> caster_nodes;                     // nodes with their own (low) floor friction
+  double caster_mu = -1;                             // < 0: the body's floor mu
+};
+
+// A rigid plane: points with (x - point) . normal >= 0 are outside. Bounded by half extents along
+// two in-plane axes (infinite when the extents are not positive).
+struct RigidPlane {
+  Vec3 point = Vec3::Zero(), normal = Vec3::UnitZ();
+  Vec3 axis_u = Vec3::UnitX(), axis_v = Vec3::UnitY();
+  double half_u = 0, half_v = 0;
+  bool is_wall = false;
+  bool contains_projection(const Vec3& x) const {
+    if (half_u <= 0 || half_v <= 0) return true;
+    const Vec3 r = x - point;
+    return std::abs(r.dot(axis_u)) <= half_u && std::abs(r.dot(axis_v)) <= half_v;
+  }
+};
+
+// Sum of contact force magnitudes between two bodies (or a body and the floor/walls: -1 / -2) in
+// the last evaluation, for the per-pair force histories.
+struct PairForce {
+  int body_a, body_b;
+  Vec3 force_on_a;
+};
+
+template <class Law>
+inline constexpr bool contact_law_has_history = false;
+template <class Normal, class Damping>
+inline constexpr bool contact_law_has_history<ContactLaw<Normal, Damping, StickSlip>> = true;
+
+template <class Law>
+class RoomContact {
+  static constexpr bool law_has_history = contact_law_has_history<Law>;
+  static_assert(ContactLawPolicy<Law>,
+                "furniture_fem: RoomContact needs a contact law with force(kinematics, params, state) returning "
+                "ContactForce; see docs/contact/contact.md");
+
+ public:
+  static constexpr int floor_id = -1, wall_id = -2, obstacle_id = -3;
+  // Candidate pairs come from boxes inflated by `margin`; the broad phase runs again as soon as any
+  // node has moved more than margin / 2 since the last run (two capsules can then have approached by
+  // at most the margin, so no contact is missed), checked at every evaluation in O(nodes).
+  double margin = 0.01;  // m
+  bool item_contact = true;
+
+  RoomContact() = default;
+  RoomContact(const Model& model, std::vector<BodyContact> bodies, std::vector<RigidPlane> planes, Law law = {})
+      : law_(std::move(law)), bodies_(std::move(bodies)), planes_(std::move(planes)) {
+    if (static_cast<int>(bodies_.size()) != model.num_bodies())
+      throw ModelError("RoomContact: " + std::to_string(bodies_.size()) + " body contact records for " +
+                       std::to_string(model.num_bodies()) + " bodies");
+    for (const auto& b : bodies_) {
+      Law::validate(b.floor);
+      Law::validate(b.wall);
+      Law::validate(b.item);
+    }
+    // A node's contact distance against a plane: half the width of its narrowest member (a corner
+    // of 50 mm tubes: 25 mm; a caster node joined to a wide side-table beam: the caster's).
+    half_width_.assign(model.num_nodes(), std::numeric_limits<double>::infinity());
+    for (int e = 0; e < model.num_elements(); ++e) {
+      const double h = 0.5 * model.section_of(e).contact_width();
+      for (int n : {model.elements()[e].n1, model.elements()[e].n2}) half_width_[n] = std::min(half_width_[n], h);
+    }
+    caster_.assign(model.num_nodes(), 0);
+    for (const auto& b : bodies_)
+      for (int n : b.caster_nodes) caster_.at(n) = 1;
+    node_state_.assign(static_cast<size_t>(model.num_nodes()) * planes_.size(), ContactState{});
+    node_trial_ = node_state_;
+  }
+  void add_obstacle(MeshObstacle obstacle) { obstacles_.push_back(std::move(obstacle)); }
+
+  // Seconds spent, accumulated over every evaluation: nodes against planes, the broad phase (boxes
+  // and candidate pairs, when it re-runs), the narrow phase with the law on the candidates, and
+  // nodes against mesh obstacles.
+  struct Timings {
+    double planes = 0, broad = 0, pairs = 0, obstacles = 0;
+  };
+  const Timings& timings() const { return timings_; }
+
+  void add_forces(const ContactView& view, Eigen::VectorXd& f) {
+    using clock = std::chrono::steady_clock;
+    const auto seconds_since = [](clock::time_point t0) {
+      return std::chrono::duration<double>(clock::now() - t0).count();
+    };
+    const auto t_planes = clock::now();
+    const Model& model = view.model;
+    pair_forces_.clear();
+    pair_trial_.clear();
+    active_ = 0;
+    // Nodes against planes (floor, walls).
+    for (int n = 0; n < model.num_nodes(); ++n) {
+      const Vec3& x = view.x[n];
+      const int body = model.node(n).body;
+      for (size_t p = 0; p < planes_.size(); ++p) {
+        const RigidPlane& pl = planes_[p];
+        const double l = (x - pl.point).dot(pl.normal);
+        const double L = half_width_[n];
+        if (l > L || !pl.contains_projection(x)) {
+          node_trial_[n * planes_.size() + p] = ContactState{};  // out of contact: history forgotten
+          continue;
+        }
+        ContactKinematics k;
+        k.l = l;  // behind the plane: g > 1 and the penalty keeps growing
+        k.L = L;
+        k.n = pl.normal;
+        k.v = view.v.template segment<3>(6 * n);
+        k.long_axis = long_axis(body, view);
+        k.dt = view.dt;
+        ContactParams prm = pl.is_wall ? bodies_[body].wall : bodies_[body].floor;
+        if (!pl.is_wall && caster_[n] && bodies_[body].caster_mu >= 0) {
+          prm.mu = prm.mu_long = prm.mu_short = bodies_[body].caster_mu;
+        }
+        // Laws with history (stick-slip) start every evaluation from the committed state; commit()
+        // keeps the trial of the last evaluation, so Newton iterations do not advance the history.
+        const size_t si = n * planes_.size() + p;
+        node_trial_[si] = node_state_[si];
+        const ContactForce cf = law_.force(k, prm, node_trial_[si]);
+        f.template segment<3>(6 * n) += cf.on_a;
+        add_pair_force(body, pl.is_wall ? wall_id : floor_id, cf.on_a);
+        ++active_;
+      }
+    }
+    timings_.planes += seconds_since(t_planes);
+    if (item_contact && model.num_bodies() > 1) element_contacts(view, f);
+    if (!obstacles_.empty()) {
+      const auto t_obstacles = clock::now();
+      obstacle_contacts(view, f);
+      timings_.obstacles += seconds_since(t_obstacles);
+    }
+  }
+
+  void commit() {
+    ++steps_;
+    // No copy back into node_trial_: add_forces overwrites every entry of it (reset out of contact,
+    // the committed state in contact) before the law reads it.
+    node_state_.swap(node_trial_);
+    pair_state_.swap(pair_trial_);  // pairs out of contact forget their history
+    pair_trial_.clear();
+  }
+
+  const std::vector<PairForce>& pair_forces() const { return pair_forces_; }
+  int active_contacts() const { return active_; }
+  long broad_phase_runs() const { return broad_runs_; }
+  std::size_t candidate_pairs() const { return candidates_.size(); }
+  const Law& law() const { return law_; }
+  Law& law() { return law_; }
+
+ private:
+  Vec3 long_axis(int body, const ContactView& view) const {
+    const auto& b = bodies_[body];
+    if (b.long_axis_node_a < 0 || b.long_axis_node_b < 0) return Vec3::Zero();
+    Vec3 a = view.x[b.long_axis_node_b] - view.x[b.long_axis_node_a];
+    a.z() = 0;
+    const double n = a.norm();
+    return n > 1e-9 ? Vec3(a / n) : Vec3::Zero();
+  }
+
+  void add_pair_force(int a, int b, const Vec3& f) {
+    for (auto& pf : pair_forces_)
+      if (pf.body_a == a && pf.body_b == b) {
+        pf.force_on_a += f;
+        return;
+      }
+    pair_forces_.push_back({a, b, f});
+  }
+
+  void element_contacts(const ContactView& view, Eigen::VectorXd& f) {
+    const Model& model = view.model;
+    bool rerun = x_broad_.size() != view.x.size();
+    if (!rerun) {
+      const double limit2 = 0.25 * margin * margin;
+      for (size_t n = 0; n < view.x.size() && !rerun; ++n) rerun = (view.x[n] - x_broad_[n]).squaredNorm() > limit2;
+    }
+    const auto t_broad = std::chrono::steady_clock::now();
+    if (rerun) {
+      x_broad_ = view.x;
+      std::vector<ElementBox> boxes;
+      boxes.reserve(model.num_elements());
+      for (int e = 0; e < model.num_elements(); ++e) {
+        const auto& el = model.elements()[e];
+        boxes.push_back(ElementBox::around(view.x[el.n1], view.x[el.n2],
+                                           0.5 * model.section_of(e).contact_width() + margin, e, el.body));
+      }
+      broad_phase_.pairs(boxes, candidates_);
+      ++broad_runs_;
+    }
+    const auto t_pairs = std::chrono::steady_clock::now();
+    timings_.broad += std::chrono::duration<double>(t_pairs - t_broad).count();
+    struct AddPairs {  // on every way out of the loop
+      Timings& t;
+      std::chrono::steady_clock::time_point t0;
+      ~AddPairs() { t.pairs += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); }
+    } add_pairs{timings_, t_pairs};
+    for (const auto& [ea, eb] : candidates_) {
+      const auto& A = model.elements()[ea];
+      const auto& B = model.elements()[eb];
+      const double L = 0.5 * (model.section_of(ea).contact_width() + model.section_of(eb).contact_width());
+      SegmentPair sp;
+      sp.a0 = view.x[A.n1];
+      sp.a1 = view.x[A.n2];
+      sp.b0 = view.x[B.n1];
+      sp.b1 = view.x[B.n2];
+      sp.va0 = view.v.template segment<3>(6 * A.n1);
+      sp.va1 = view.v.template segment<3>(6 * A.n2);
+      sp.vb0 = view.v.template segment<3>(6 * B.n1);
+      sp.vb1 = view.v.template segment<3>(6 * B.n2);
+      sp.L = L;
+      sp.dt = view.dt;
+      const ContactParams prm = mean_params(bodies_[A.body].item, bodies_[B.body].item);
+      // Only laws with a history (a tangential spring) keep per-pair state across steps.
+      ContactState st;
+      if constexpr (law_has_history) {
+        const auto it = pair_state_.find(key(ea, eb));
+        if (it != pair_state_.end()) st = it->second;
+      }
+      const auto nf = evaluate_segment_pair(law_, sp, prm, st);
+      if constexpr (law_has_history)
+        if (nf.in_contact) pair_trial_[key(ea, eb)] = st;
+      if (!nf.in_contact) continue;
+      f.template segment<3>(6 * A.n1) += nf.on_a0;
+      f.template segment<3>(6 * A.n2) += nf.on_a1;
+      f.template segment<3>(6 * B.n1) += nf.on_b0;
+      f.template segment<3>(6 * B.n2) += nf.on_b1;
+      // The moments carrying the tangential force from the contact point to the centre lines make
+      // each pair exactly torque-free.
+      f.template segment<3>(6 * A.n1 + 3) += nf.moment_a0;
+      f.template segment<3>(6 * A.n2 + 3) += nf.moment_a1;
+      f.template segment<3>(6 * B.n1 + 3) += nf.moment_b0;
+      f.template segment<3>(6 * B.n2 + 3) += nf.moment_b1;
+      add_pair_force(std::min(A.body, B.body), std::max(A.body, B.body),
+                     A.body < B.body ? Vec3(nf.on_a0 + nf.on_a1) : Vec3(nf.on_b0 + nf.on_b1));
+      ++active_;
+    }
+  }
+
+  void obstacle_contacts(const ContactView& view, Eigen::VectorXd& f) {
+    const Model& model = view.model;
+    for (int n = 0; n < model.num_nodes(); ++n) {
+      const int body = model.node(n).body;
+      for (const auto& ob : obstacles_) {
+        const double L = half_width_[n];
+        const auto cp = ob.closest_point(view.x[n]);
+        const Vec3 d = view.x[n] - cp;
+        const double l = d.norm();
+        if (l > L || l < 1e-12) continue;
+        ContactKinematics k;
+        k.l = l;
+        k.L = L;
+        k.n = d / l;
+        k.v = view.v.template segment<3>(6 * n);
+        k.long_axis = Vec3::Zero();
+        k.dt = view.dt;
+        ContactState st;
+        const ContactForce cf = law_.force(k, bodies_[body].wall, st);
+        f.template segment<3>(6 * n) += cf.on_a;
+        add_pair_force(body, obstacle_id, cf.on_a);
+        ++active_;
+      }
+    }
+  }
+
+  static ContactParams mean_params(const ContactParams& a, const ContactParams& b) {
+    ContactParams p = a;
+    p.alpha = 0.5 * (a.alpha + b.alpha);
+    p.Dc = 0.5 * (a.Dc + b.Dc);
+    p.k_lin = 0.5 * (a.k_lin + b.k_lin);
+    p.c_lin = 0.5 * (a.c_lin + b.c_lin);
+    p.k_t = 0.5 * (a.k_t + b.k_t);
+    return p;
+  }
+  static long long key(int a, int b) { return (static_cast<long long>(a) << 32) | static_cast<unsigned>(b); }
+
+  Law law_;
+  std::vector<BodyContact> bodies_;
+  std::vector<RigidPlane> planes_;
+  std::vector<MeshObstacle> obstacles_;
+  std::vector<double> half_width_;
+  std::vector<char> caster_;
+  std::vector<ContactState> node_state_, node_trial_;
+  std::unordered_map<long long, ContactState> pair_state_, pair_trial_;
+  BroadPhase broad_phase_;
+  std::vector<std::pair<int, int>> candidates_;
+  std::vector<PairForce> pair_forces_;
+  std::vector<Vec3> x_broad_;  // node positions at the last broad phase
+  Timings timings_;
+  long steps_ = 0, broad_runs_ = 0;
+  int active_ = 0;
+};
+
+}  // namespace furniture_fem

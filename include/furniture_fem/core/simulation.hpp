@@ -1,0 +1,1037 @@
+#pragma once
+// furniture_fem/core/simulation.hpp: the ASI-Gauss beam solver, composed at compile time.
+//
+//   Simulation<Element, Integrator, LinearSolver, Contact>
+//
+// Element: an ElementPolicy (elements.hpp); Integrator: an IntegratorPolicy (integrators.hpp);
+// LinearSolver: a LinearSolverPolicy (solvers.hpp); Contact: anything with
+// add_forces(const ContactView&, Eigen::VectorXd&) (NoContact by default; contact.hpp provides the
+// beam/floor/wall contact). Large displacements and rotations are handled by a corotational frame per
+// element (detail/body_system.hpp), so element policies are small-strain kernels.
+//
+// Each body (furniture item) is its own block: its own sparse effective matrix and solver, evaluated
+// in parallel over bodies. Between matrix refreshes a body's factorisation is reused with the body's
+// rigid rotation taken out of the right-hand side and put back into the solution, which keeps the
+// reuse valid while an item tumbles. Nothing allocates inside the time loop.
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <cmath>
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "elements.hpp"
+#include "integrators.hpp"
+#include "model.hpp"
+#include "solvers.hpp"
+
+#define FURNITURE_FEM_CORE_INTERNAL
+#include "detail/body_system.hpp"
+#include "detail/parallel.hpp"
+#include "detail/rotation.hpp"
+#undef FURNITURE_FEM_CORE_INTERNAL
+
+namespace furniture_fem {
+
+struct SimulationOptions {
+  double dt = 1e-3;
+  Vec3 gravity = Vec3(0, 0, -9.80665);
+  double mass_damping = 0;      // C = mass_damping * M (1/s); 0: no viscous damping
+  int max_iterations = 25;      // for EquilibriumMode::iterate
+  double tolerance = 1e-7;      // residual norm relative to the force scale
+  int refresh_interval = 1;     // refresh each body's matrix every N steps (1: every step)
+  bool geometric_stiffness = true;
+  bool finite_rotation_update = true;  // put each free body's rigid turn of a step on the finite rotation
+  bool check_finite = true;     // stop with a diagnosis on NaN / divergence
+  int threads = 1;              // threads over bodies (element forces, solves); 0: all hardware threads
+};
+
+// What a contact model sees: the current state of the structure, all in the table frame.
+struct ContactView {
+  const Model& model;
+  const std::vector<Vec3>& x;      // nodal positions
+  const Eigen::VectorXd& v;        // nodal velocities (6 per node, angular in world axes)
+  double time;
+  double dt;
+};
+
+struct NoContact {
+  void add_forces(const ContactView&, Eigen::VectorXd&) {}
+};
+
+template <class C>
+concept ContactPolicy = requires(C c, const ContactView& view, Eigen::VectorXd& f) { c.add_forces(view, f); };
+
+// Where the time of the steps went (seconds, accumulated since the start). Wall clock: `contact`
+// (every node and element pair, the whole scene at once), `bodies` (the sweep over the bodies that
+// does everything else a body needs: residual, solve, updates, element forces, energy, ASI shifts)
+// and `total`. Inside the sweep, the time of each body's parts is summed over the bodies, so with
+// several threads these are thread seconds and can exceed `bodies`: `solve` (residual, assembly,
+// factorisation, substitution, finite-rotation update), `factorize` (the factorisations alone, part
+// of `solve`) and `elements` (kinematic update and element forces).
+struct StepTimings {
+  double elements = 0, contact = 0, solve = 0, factorize = 0, bodies = 0, total = 0;
+  double other() const { return total - contact - bodies; }  // predictor, loads, checks (wall)
+};
+
+struct StepInfo {
+  int iterations = 0;
+  double residual = 0;       // relative residual at the end of the step (carried over if not iterated)
+  bool converged = true;
+  int refreshed_bodies = 0;
+  int shifted_points = 0;    // ASI integration point moves in this step
+};
+
+// The energy ledger (J): what the structure holds, and the work done on it.
+struct EnergyLedger {
+  double kinetic = 0, strain = 0, gravity_potential = 0;
+  double external_work = 0;   // base excitation inertial forces and nodal loads
+  double contact_work = 0;    // work of contact forces (negative: friction and damping dissipate)
+  double damping_work = 0;    // work of viscous damping (negative)
+  double plastic_work = 0;    // dissipated in plastic hinges (positive)
+  double initial_total = 0;
+  double total() const { return kinetic + strain + gravity_potential; }
+  // What the integrator lost or made: zero for an exact energy balance.
+  double imbalance() const {
+    return total() - initial_total - external_work - contact_work - damping_work + plastic_work;
+  }
+  double scale() const {
+    return std::max({std::abs(kinetic), std::abs(strain), std::abs(external_work), std::abs(contact_work),
+                     std::abs(plastic_work), std::abs(initial_total), 1e-12});
+  }
+};
+
+template <class Element, class Integrator = Newmark, class LinearSolver = DirectLdltSolver, class Contact = NoContact>
+class Simulation {
+  static_assert(check_element_policy<Element>());
+  static_assert(check_integrator_policy<Integrator>());
+  static_assert(check_linear_solver_policy<LinearSolver>());
+  static_assert(ContactPolicy<Contact>,
+                "furniture_fem: the Contact policy must provide add_forces(const ContactView&, Eigen::VectorXd&); "
+                "see docs/contact/contact.md");
+
+ public:
+  using State = typename Element::State;
+
+  Simulation(const Model& model, Integrator integrator = {}, SimulationOptions options = {}, Contact contact = {})
+      : model_(model), integrator_(integrator), opt_(options), coef_(integrator.coefficients()),
+        contact_(std::move(contact)) {
+    model_.validate();
+    if (!(opt_.dt > 0) || !std::isfinite(opt_.dt))
+      throw ModelError("simulation: dt must be positive and finite (got " + detail::fmt(opt_.dt) + ")");
+    if constexpr (Element::needs_pairs) {
+      for (int e = 0; e < model_.num_elements(); ++e)
+        if (model_.elements()[e].slot == PairSlot::none)
+          throw ModelError(model_.describe_element(e) + ": the " + std::string(Element::name) +
+                           " element needs members split into pairs (MemberOptions::pairs)");
+    }
+    setup();
+  }
+
+  // ---- loads and initial conditions ----
+  // Table (base) acceleration in m/s^2; every mass gets -m a_table(t) (the table frame).
+  void set_table_acceleration(std::function<Vec3(double)> a) { table_acc_ = std::move(a); }
+  // A nodal load (3 forces, 3 moments), scaled by load_scale(t) in dynamics and by the load factor in
+  // statics.
+  void set_nodal_load(int node, const Vec6& load) { nodal_load_.segment<6>(6 * check_node(node)) = load; }
+  void set_load_scale(std::function<double(double)> s) { load_scale_ = std::move(s); }
+  void set_velocity(int node, const Vec6& v) { v_.segment<6>(6 * check_node(node)) = v; }
+  // Rigid-body velocity field (v0 + w x (x - c)) for all nodes of a body.
+  void set_body_velocity(int body, const Vec3& v0, const Vec3& w, const Vec3& c) {
+    for (int n : model_.body(body).nodes) {
+      v_.segment<3>(6 * n) = v0 + w.cross(x_[n] - c);
+      v_.segment<3>(6 * n + 3) = w;
+    }
+  }
+  Contact& contact() { return contact_; }
+  const Contact& contact_model() const { return contact_; }
+
+  // Models a body as rigid (6 DOF) with the same nodes, masses and contact geometry: its elements
+  // carry no forces and are not evaluated; its motion is solved in the rigid subspace (Newton on the
+  // body's translation and rotation, the residual reduced from the nodal one). Call before the first
+  // step. "Model only what a scene needs": an item whose internal forces nobody asked for.
+  void set_rigid(int body, bool rigid = true) {
+    if (started_) throw ModelError("set_rigid: call before the first step");
+    if (body < 0 || body >= model_.num_bodies()) throw ModelError("set_rigid: unknown body " + std::to_string(body));
+    if (rigid)
+      for (int n : model_.body(body).nodes)
+        if (model_.node(n).fixed)
+          throw ModelError("set_rigid: body '" + model_.body(body).name + "' has supported node " + std::to_string(n) +
+                           "; a rigid body must be free");
+    systems_[body].rigid = rigid;
+  }
+  bool is_rigid(int body) const { return systems_.at(body).rigid; }
+
+  // A grounded spring on one DOF (0-2 translations, 3-5 rotations): force k (target - u). The target
+  // is scaled like the loads (load factor in statics, load_scale(t) in dynamics), so a stiff spring
+  // prescribes a displacement (displacement control of a push-over). Returns the spring's index.
+  int add_support_spring(int node, int dof, double k, double target = 0) {
+    check_node(node);
+    if (dof < 0 || dof > 5) throw ModelError("support spring at node " + std::to_string(node) + ": dof must be 0..5");
+    if (!(k > 0) || !std::isfinite(k) || !std::isfinite(target))
+      throw ModelError("support spring at node " + std::to_string(node) + ": k must be positive and finite (got " +
+                       detail::fmt(k) + ")");
+    springs_.push_back({node, dof, k, target});
+    return static_cast<int>(springs_.size()) - 1;
+  }
+  // Force the spring exerts on its node (the support reaction, sign of the DOF).
+  double spring_force(int i) const {
+    const auto& sp = springs_.at(i);
+    return sp.k * (spring_scale() * sp.target - dof_value(sp.node, sp.dof));
+  }
+
+  // Places a node (position and rotation) and recomputes the internal forces: for checks such as
+  // "a rigid rotation produces no internal force". Velocities are left as they are.
+  void set_pose(int node, const Vec3& x, const Mat3& R) {
+    x_[check_node(node)] = x;
+    u_[node] = x - model_.node(node).X;
+    R_[node] = R;
+  }
+  void update_internal_forces() {
+    evaluate_elements(false);
+    committed_ = trial_;
+  }
+  Vec6 internal_force(int node) const { return fint_.segment<6>(6 * check_node(node)); }
+
+  // The body's static tangent stiffness at the current configuration (dense; for modal analysis of
+  // small models), and the lumped mass diagonal, in the body's local DOF order (see body_nodes).
+  Eigen::MatrixXd stiffness_matrix(int body) {
+    const bool saved = static_;
+    static_ = true;
+    evaluate_body(body, true);
+    static_ = saved;
+    systems_[body].needs_refresh = true;
+    systems_[body].assembled = false;
+    return Eigen::MatrixXd(systems_[body].K);
+  }
+  Eigen::VectorXd mass_diagonal(int body) const {
+    const auto& bs = systems_[body];
+    Eigen::VectorXd m(bs.ndof());
+    for (size_t k = 0; k < bs.nodes.size(); ++k) m.segment<6>(6 * k) = mass_.segment<6>(6 * bs.nodes[k]);
+    return m;
+  }
+  const std::vector<int>& body_nodes(int body) const { return systems_[body].nodes; }
+  bool dof_fixed(int node, int dof) const { return (model_.node(node).fixed >> dof) & 1u; }
+
+  // ---- time stepping ----
+  // A step is one pass over the whole scene for what couples the bodies (the loads' time functions
+  // and contact), and one sweep over the bodies for the rest: each body's residual, solve, update,
+  // element forces, energy and ASI shifts are done while its data is in the core's cache. Done phase
+  // by phase over the whole scene instead, every phase streamed the scene's state from memory, and the
+  // cost per element grew with the size of the scene (docs/performance.md section 2).
+  StepInfo step() {
+    const auto step_start = std::chrono::steady_clock::now();
+    struct AddTotal {
+      StepTimings& t;
+      std::chrono::steady_clock::time_point s;
+      ~AddTotal() { t.total += std::chrono::duration<double>(std::chrono::steady_clock::now() - s).count(); }
+    } add_total{timings_, step_start};
+    if (!started_) start();
+    const double t1 = t_ + opt_.dt;
+    t_state_ = t1;
+    StepInfo info;
+    // Predictor "no motion" (Du = 0) and the loads at t_{n+1}. Its element forces are the last step's.
+    const Loads loads = loads_at(t1);
+    body_sweep([&](int b) { predict_body(b, loads); });
+    // The predictor's Newmark velocity, (1 - gamma / beta) v_n, has the wrong sign, and friction or the
+    // paper's damping evaluated there would pump energy: contact sees v_n + dt a_n (v_contact_) instead.
+    timed(timings_.contact, [&] { contact_forces(t1, v_contact_, fc1_); });
+    if (opt_.check_finite && !(fc1_.allFinite() && fext1_.allFinite())) {
+      residual();  // for the diagnosis
+      throw SimulationError(t_, "the residual is not finite (NaN or infinity) at the start of the step: " +
+                                    non_finite_diagnosis());
+    }
+    if (integrator_.mode == EquilibriumMode::carry_over) {
+      // Carry-over: the contact forces applied over this step are those of the predictor (fc1_); the
+      // unbalance left by the solve enters the next step's residual, so neither the contact forces nor
+      // the residual are evaluated again (half the contact cost), and each body is done in one go.
+      body_sweep([&](int b) {
+        BodyStepSums& s = sums_[b];
+        timed(s.solve, [&] { residual_body(systems_[b], fext1_, s.residual_num, s.residual_den); });
+        if (!update_body(b, s, true)) return;
+        if (opt_.check_finite) {
+          for (int n : systems_[b].nodes) s.not_finite = s.not_finite || !Du_.segment<6>(6 * n).allFinite();
+          if (s.not_finite) return;
+        }
+        commit_body(b, s);
+      });
+      info.iterations = 1;
+      info.converged = true;
+      const BodyStepSums total = sum_bodies(t1);
+      info.residual = total.residual();
+      info.refreshed_bodies = total.refreshed;
+      info.shifted_points = total.shifted;
+    } else {
+      body_sweep([&](int b) { residual_body(systems_[b], fext1_, sums_[b].residual_num, sums_[b].residual_den); });
+      double rel = sum_bodies(t1).residual();
+      info.residual = rel;
+      for (int it = 0; it < opt_.max_iterations; ++it) {
+        body_sweep([&](int b) { update_body(b, sums_[b], it == 0); });
+        info.refreshed_bodies += sum_bodies(t1).refreshed;
+        timed(timings_.contact, [&] { contact_forces(t1, v_, fc1_); });
+        body_sweep([&](int b) { residual_body(systems_[b], fext1_, sums_[b].residual_num, sums_[b].residual_den); });
+        rel = sum_bodies(t1).residual();
+        info.iterations = it + 1;
+        info.residual = rel;
+        if (opt_.check_finite && !std::isfinite(rel))
+          throw SimulationError(t1, "the residual is not finite (NaN or infinity) after iteration " +
+                                        std::to_string(it + 1) + ": the step diverged; try a smaller dt");
+        if (rel < opt_.tolerance) break;
+      }
+      info.converged = rel < opt_.tolerance;
+      body_sweep([&](int b) { commit_body(b, sums_[b]); });
+      info.shifted_points = sum_bodies(t1).shifted;
+    }
+    if constexpr (requires { contact_.commit(); }) contact_.commit();
+    t_ = t1;
+    ++steps_;
+    return info;
+  }
+
+  // Steps until time t_end; the observer (if any) is called after every step with (sim, info).
+  template <class Observer>
+  void run_until(double t_end, Observer&& observer) {
+    while (t_ < t_end - 0.5 * opt_.dt) {
+      const StepInfo info = step();
+      observer(*this, info);
+    }
+  }
+  void run_until(double t_end) {
+    run_until(t_end, [](const Simulation&, const StepInfo&) {});
+  }
+
+  // ---- statics: load increments with full Newton (tangent refreshed at every iteration) ----
+  struct StaticResult {
+    int increments = 0, iterations = 0;
+    bool converged = true;
+    double residual = 0;
+  };
+  StaticResult solve_static(int increments = 1, int max_iterations = 50, double tolerance = 1e-9) {
+    StaticResult res;
+    const bool saved_static = static_;
+    static_ = true;
+    if (!started_) start();
+    for (int k = 1; k <= increments; ++k) {
+      load_factor_ = double(k) / increments;
+      external_forces(t_, fext1_);
+      bool ok = false;
+      for (int it = 0; it < max_iterations; ++it) {
+        evaluate_elements(true);
+        for (auto& bs : systems_) bs.needs_refresh = true;
+        Du_.setZero();
+        const double rel = static_residual();
+        res.residual = rel;
+        if (rel < tolerance) {
+          ok = true;
+          break;
+        }
+        solve_bodies();
+        ++res.iterations;
+        for (int n = 0; n < model_.num_nodes(); ++n) {
+          u_[n] += Du_.segment<3>(6 * n);
+          x_[n] = model_.node(n).X + u_[n];
+          R_[n] = detail::rotation_exp(Du_.segment<3>(6 * n + 3)) * R_[n];
+        }
+        if (!Du_.allFinite()) throw SimulationError(t_, "static solve: the increment is not finite");
+      }
+      committed_ = trial_;
+      shift_integration_points();
+      res.increments = k;
+      if (!ok) {
+        res.converged = false;
+        break;
+      }
+    }
+    // A dynamic step after a static solve starts from this state: start() again, which assembles the
+    // effective (dynamic) matrix in place of the static tangent left flagged as assembled, and sets the
+    // initial accelerations, forces and energy from the static equilibrium.
+    started_ = false;
+    static_ = saved_static;
+    return res;
+  }
+  void set_load_factor(double f) { load_factor_ = f; }
+
+  // ---- results ----
+  double time() const { return t_; }
+  long steps() const { return steps_; }
+  const Model& model() const { return model_; }
+  const Vec3& position(int n) const { return x_[n]; }
+  const Vec3& displacement(int n) const { return u_[n]; }
+  const Mat3& rotation(int n) const { return R_[n]; }
+  Vec6 velocity(int n) const { return v_.segment<6>(6 * n); }
+  Vec6 acceleration(int n) const { return a_.segment<6>(6 * n); }
+  const std::vector<Vec3>& positions() const { return x_; }
+  const Eigen::VectorXd& velocities() const { return v_; }
+  double nodal_mass(int n) const { return mass_[6 * n]; }
+  double nodal_rotary_inertia(int n) const { return mass_[6 * n + 3]; }
+  const State& element_state(int e) const { return committed_[e]; }
+  // Current element frame (columns: local x, y, z in world axes).
+  Mat3 element_frame(int e) const { return frames_[e]; }
+
+  // Sectional forces (local axes of the element) at its stress evaluation point, or at any xi.
+  SectionForces section_forces(int e) const {
+    return Element::section_forces(props_[e], committed_[e], d_[e]);
+  }
+  SectionForces section_forces_at(int e, double xi) const {
+    const SectionForces s = section_forces(e);
+    const Vec6 v = detail::forces_at(s.as_vector(), s.xi, xi, props_[e].L0);
+    return {v[0], v[1], v[2], v[3], v[4], v[5], xi};
+  }
+
+  Vec3 linear_momentum() const {
+    Vec3 p = Vec3::Zero();
+    for (int n = 0; n < model_.num_nodes(); ++n) p += mass_[6 * n] * v_.segment<3>(6 * n);
+    return p;
+  }
+  Vec3 angular_momentum(const Vec3& about = Vec3::Zero()) const {
+    Vec3 L = Vec3::Zero();
+    for (int n = 0; n < model_.num_nodes(); ++n)
+      L += (x_[n] - about).cross(mass_[6 * n] * v_.segment<3>(6 * n)) + mass_[6 * n + 3] * v_.segment<3>(6 * n + 3);
+    return L;
+  }
+  EnergyLedger energy() const {
+    EnergyLedger e = ledger_;
+    e.kinetic = 0.5 * (v_.array() * v_.array() * mass_.array()).sum();
+    e.gravity_potential = 0;
+    for (int n = 0; n < model_.num_nodes(); ++n) e.gravity_potential -= mass_[6 * n] * opt_.gravity.dot(x_[n]);
+    e.strain = 0;
+    e.plastic_work = 0;
+    for (int el = 0; el < model_.num_elements(); ++el) {
+      e.strain += strain_energy(el);
+      if constexpr (requires { committed_[el].plastic_work; }) e.plastic_work += committed_[el].plastic_work;
+    }
+    if (!started_) e.initial_total = e.total();  // before the first step the ledger is balanced by definition
+    return e;
+  }
+  long factorizations() const {
+    long f = 0;
+    for (const auto& s : solvers_) f += s->factorizations();
+    return f;
+  }
+  const SimulationOptions& options() const { return opt_; }
+  const StepTimings& timings() const { return timings_; }
+  const Integrator& integrator() const { return integrator_; }
+
+ private:
+  int check_node(int n) const {
+    if (n < 0 || n >= model_.num_nodes()) throw ModelError("node index out of range: " + std::to_string(n));
+    return n;
+  }
+
+  void setup() {
+    const int nn = model_.num_nodes(), ne = model_.num_elements();
+    x_.resize(nn);
+    u_.assign(nn, Vec3::Zero());
+    u0_.assign(nn, Vec3::Zero());
+    R_.assign(nn, Mat3::Identity());
+    R0_.assign(nn, Mat3::Identity());
+    for (int n = 0; n < nn; ++n) x_[n] = model_.node(n).X;
+    v_.setZero(6 * nn);
+    a_.setZero(6 * nn);
+    for (auto* v : {&vn_, &an_, &v_contact_, &Du_, &fint_, &fext0_, &fext1_, &fc0_, &fc1_, &fnet0_, &mass_, &nodal_load_,
+                    &fgrav_, &r_})
+      v->setZero(6 * nn);
+    props_.resize(ne);
+    E0_.resize(ne);
+    frames_.resize(ne);
+    d_.assign(ne, Vec12::Zero());
+    fl_.assign(ne, Vec12::Zero());
+    committed_.resize(ne);
+    for (int e = 0; e < ne; ++e) {
+      const auto& el = model_.elements()[e];
+      props_[e] = ElementProps::from_model(model_, e);
+      E0_[e] = detail::initial_frame(model_.node(el.n1).X, model_.node(el.n2).X, el.y_ref);
+      frames_[e] = E0_[e];
+      committed_[e] = Element::initial_state(props_[e]);
+      // Lumped mass: half the element's mass on each node; rotary inertia isotropic, rho (Iy + Iz) L / 2
+      // per node and axis (the section's polar term; isotropic so that no gyroscopic term arises).
+      const double m = el.line_mass * props_[e].L0;
+      const auto& s = model_.section_of(e);
+      const double J = el.line_mass / s.A * (s.Iy + s.Iz) * props_[e].L0;
+      for (int node : {el.n1, el.n2}) {
+        mass_.segment<3>(6 * node).array() += 0.5 * m;
+        mass_.segment<3>(6 * node + 3).array() += 0.5 * J;
+      }
+    }
+    trial_ = committed_;
+    for (int n = 0; n < nn; ++n)
+      if (!(mass_[6 * n] > 0) && model_.node(n).fixed != ALL_DOFS)
+        throw ModelError("node " + std::to_string(n) + " of body '" + model_.body(model_.node(n).body).name +
+                         "' has no mass (its elements have zero line mass) and is not fixed");
+    local_index_.assign(nn, -1);
+    systems_.resize(model_.num_bodies());
+    sums_.assign(model_.num_bodies(), {});
+    solvers_.resize(model_.num_bodies());
+    for (int b = 0; b < model_.num_bodies(); ++b) {
+      auto& bs = systems_[b];
+      bs.nodes = model_.body(b).nodes;
+      bs.elements = model_.body(b).elements;
+      for (size_t k = 0; k < bs.nodes.size(); ++k) local_index_[bs.nodes[k]] = static_cast<int>(k);
+      detail::build_pattern(bs, model_, local_index_);
+      bs.fixed.assign(bs.ndof(), 0);
+      for (size_t k = 0; k < bs.nodes.size(); ++k)
+        for (int i = 0; i < 6; ++i)
+          if (model_.node(bs.nodes[k]).fixed & (1u << i)) bs.fixed[6 * k + i] = 1;
+      Vec3 c = Vec3::Zero();
+      for (int n : bs.nodes) c += model_.node(n).X;
+      bs.Xc = bs.nodes.empty() ? c : Vec3(c / bs.nodes.size());
+      body_order_.push_back(b);
+      solvers_[b] = std::make_unique<LinearSolver>();
+      solvers_[b]->analyse(bs.K);
+    }
+    std::stable_sort(body_order_.begin(), body_order_.end(),
+                     [&](int a, int b) { return systems_[a].elements.size() > systems_[b].elements.size(); });
+    if (opt_.threads <= 0) opt_.threads = detail::hardware_threads();
+  }
+
+  // Initial accelerations from the equations of motion, and the first forces.
+  void start() {
+    started_ = true;
+    evaluate_elements(false);
+    committed_ = trial_;
+    if (static_) return;
+    external_forces(t_, fext0_);
+    contact_forces(t_, v_, fc0_);
+    fnet0_ = fext0_ + fc0_ - fint_;
+    for (int i = 0; i < a_.size(); ++i) a_[i] = is_fixed(i) ? 0.0 : fnet0_[i] / mass_[i];
+    ledger_.initial_total = energy().total();
+  }
+
+  bool is_fixed(int dof) const { return (model_.node(dof / 6).fixed >> (dof % 6)) & 1u; }
+
+  // What the loads are at time t: the table's acceleration, the scale of the nodal loads and spring
+  // targets, and the factor on gravity (statics ramps it with the load factor). Evaluated once per
+  // step on the calling thread: the time functions need not be thread-safe.
+  struct Loads {
+    Vec3 table_acc = Vec3::Zero();
+    double scale = 1, gravity_factor = 1;
+  };
+  Loads loads_at(double t) const {
+    Loads l;
+    if (static_) {
+      l.scale = l.gravity_factor = load_factor_;
+      return l;
+    }
+    if (table_acc_) l.table_acc = table_acc_(t);
+    if (load_scale_) l.scale = load_scale_(t);
+    return l;
+  }
+  void external_forces(double t, Eigen::VectorXd& f) {
+    const Loads loads = loads_at(t);
+    for (int b = 0; b < model_.num_bodies(); ++b) external_forces_body(b, loads, f);
+  }
+  void external_forces_body(int b, const Loads& loads, Eigen::VectorXd& f) {
+    for (int n : systems_[b].nodes) {
+      const double m = mass_[6 * n];
+      fgrav_.segment<3>(6 * n) = m * opt_.gravity * loads.gravity_factor;
+      f.segment<3>(6 * n) = fgrav_.segment<3>(6 * n) - Vec3(m * loads.table_acc);
+      f.segment<3>(6 * n + 3).setZero();
+      f.segment<6>(6 * n) += loads.scale * nodal_load_.segment<6>(6 * n);
+    }
+    // A support spring's force k (scale target - u) is split: k scale target is a load (so that a step
+    // sees its target at t_{n+1} from its first residual on, in carry-over mode too), k u is internal.
+    for (const auto& sp : springs_)
+      if (model_.node(sp.node).body == b) f[6 * sp.node + sp.dof] += loads.scale * sp.k * sp.target;
+  }
+
+  void contact_forces(double t, const Eigen::VectorXd& v, Eigen::VectorXd& f) {
+    f.setZero();
+    if constexpr (!std::is_same_v<Contact, NoContact>) {
+      const ContactView view{model_, x_, v, t, opt_.dt};
+      contact_.add_forces(view, f);
+    }
+  }
+
+  // Element forces (and, where a body's matrix is due, its tangent) at the current configuration.
+  void evaluate_elements(bool assemble_all) {
+    detail::parallel_for(body_order_, opt_.threads,
+                         [&](int b) { evaluate_body(b, assemble_all || systems_[b].needs_refresh); });
+  }
+
+  void evaluate_body(int b, bool assemble) {
+    auto& bs = systems_[b];
+    double* Kv = bs.K.valuePtr();
+    if (assemble) std::fill(Kv, Kv + bs.K.nonZeros(), 0.0);
+    for (int n : bs.nodes) fint_.segment<6>(6 * n).setZero();
+    if (bs.rigid) {
+      bs.assembled = true;  // nothing to assemble: the rigid solve builds its 6 x 6 matrix itself
+      return;
+    }
+    const double kf = static_ ? 1.0 : (1 - coef_.alpha_f);
+    Vec12 f, fg;
+    Mat12 k, kg;
+    for (size_t idx = 0; idx < bs.elements.size(); ++idx) {
+      const int e = bs.elements[idx];
+      const auto& el = model_.elements()[e];
+      const auto cr = detail::corotate(model_.node(el.n1).X, model_.node(el.n2).X, u_[el.n1], u_[el.n2], R_[el.n1],
+                                       R_[el.n2], E0_[e], props_[e].L0);
+      frames_[e] = cr.E;
+      d_[e] = cr.d;
+      if constexpr (requires { Element::internal_force(props_[e], committed_[e], cr.d, f, trial_[e]); }) {
+        if (assemble) Element::response(props_[e], committed_[e], cr.d, f, k, trial_[e]);
+        else Element::internal_force(props_[e], committed_[e], cr.d, f, trial_[e]);
+      } else {
+        Element::response(props_[e], committed_[e], cr.d, f, k, trial_[e]);
+      }
+      fl_[e] = f;
+      for (int blk = 0; blk < 4; ++blk) fg.segment<3>(3 * blk) = cr.E * f.segment<3>(3 * blk);
+      fint_.segment<6>(6 * el.n1) += fg.head<6>();
+      fint_.segment<6>(6 * el.n2) += fg.tail<6>();
+      if (assemble) {
+        for (int i = 0; i < 4; ++i)
+          for (int j = 0; j < 4; ++j)
+            kg.block<3, 3>(3 * i, 3 * j) = cr.E * k.block<3, 3>(3 * i, 3 * j) * cr.E.transpose();
+        if (opt_.geometric_stiffness) {
+          // String stiffness of the axial force: N / l (I - e1 e1^T) on the translations.
+          const Mat3 G = f[6] / cr.l * (Mat3::Identity() - cr.E.col(0) * cr.E.col(0).transpose());
+          kg.block<3, 3>(0, 0) += G;
+          kg.block<3, 3>(6, 6) += G;
+          kg.block<3, 3>(0, 6) -= G;
+          kg.block<3, 3>(6, 0) -= G;
+        }
+        const auto& slots = bs.element_slots[idx];
+        for (int i = 0; i < 12; ++i)
+          for (int j = 0; j < 12; ++j) Kv[slots[i * 12 + j]] += kf * kg(i, j);
+      }
+    }
+    for (const auto& sp : springs_) {
+      if (model_.node(sp.node).body != b) continue;
+      const int i = 6 * sp.node + sp.dof;
+      fint_[i] += sp.k * dof_value(sp.node, sp.dof);  // its target is a load (external_forces)
+      if (assemble) Kv[bs.diag_slot[6 * local_index_[sp.node] + sp.dof]] += kf * sp.k;
+    }
+    if (assemble) {
+      const double dt = opt_.dt;
+      const double mf = static_ ? 0.0 : (1 - coef_.alpha_m) / (coef_.beta * dt * dt) +
+                                            (1 - coef_.alpha_f) * coef_.gamma / (coef_.beta * dt) * opt_.mass_damping;
+      for (size_t k2 = 0; k2 < bs.nodes.size(); ++k2)
+        for (int i = 0; i < 6; ++i) {
+          const int ld = 6 * static_cast<int>(k2) + i;
+          Kv[bs.diag_slot[ld]] += mf * mass_[6 * bs.nodes[k2] + i];
+        }
+      // Fixed DOFs: identity rows and columns, so the pattern (and the symbolic analysis) stays.
+      for (int col = 0; col < bs.ndof(); ++col)
+        for (SparseMatrix::InnerIterator it(bs.K, col); it; ++it)
+          if (bs.fixed[it.row()] || bs.fixed[col]) it.valueRef() = (it.row() == col) ? 1.0 : 0.0;
+      bs.assembled = true;
+    }
+  }
+
+  // What one body's part of a step produced; summed over the bodies (in body order, so the sums do not
+  // depend on the threads' schedule) after each sweep.
+  struct BodyStepSums {
+    double residual_num = 0, residual_den = 0;  // squared norms of the residual and of the force scale
+    double external_work = 0, contact_work = 0, damping_work = 0;
+    double solve = 0, factorize = 0, elements = 0;  // seconds
+    int refreshed = 0, shifted = 0;
+    bool solve_failed = false, not_finite = false;
+    double residual() const { return std::sqrt(residual_num / std::max(residual_den, 1e-300)); }
+    BodyStepSums& operator+=(const BodyStepSums& o) {
+      residual_num += o.residual_num;
+      residual_den += o.residual_den;
+      external_work += o.external_work;
+      contact_work += o.contact_work;
+      damping_work += o.damping_work;
+      solve += o.solve;
+      factorize += o.factorize;
+      elements += o.elements;
+      refreshed += o.refreshed;
+      shifted += o.shifted;
+      solve_failed = solve_failed || o.solve_failed;
+      not_finite = not_finite || o.not_finite;
+      return *this;
+    }
+  };
+
+  template <class F>
+  void body_sweep(F&& f) {
+    timed(timings_.bodies, [&] { detail::parallel_for(body_order_, opt_.threads, f); });
+  }
+
+  // Sums (and clears) what the bodies produced since the last call: the timings and the energy ledger
+  // are accumulated; a failed solve or a non-finite increment stops the step with a diagnosis.
+  BodyStepSums sum_bodies(double t) {
+    BodyStepSums total;
+    for (auto& s : sums_) {
+      total += s;
+      s = {};
+    }
+    timings_.solve += total.solve;
+    timings_.factorize += total.factorize;
+    timings_.elements += total.elements;
+    ledger_.external_work += total.external_work;
+    ledger_.contact_work += total.contact_work;
+    ledger_.damping_work += total.damping_work;
+    if (total.solve_failed)
+      throw SimulationError(t_, "the linear solver failed: the effective matrix is not positive definite or the "
+                                "solution is not finite (an unsupported static model, or a diverging step)");
+    if (total.not_finite)
+      throw SimulationError(t, "the displacement increment is not finite: " + non_finite_diagnosis());
+    return total;
+  }
+
+  // Residual of the generalized-alpha equations on one body's DOFs (into r_), and the body's shares
+  // of its squared norm and of the squared force scale.
+  void residual_body(const detail::BodySystem& bs, const Eigen::VectorXd& fext1, double& num, double& den) {
+    const double am = coef_.alpha_m, af = coef_.alpha_f, c = opt_.mass_damping;
+    for (size_t k = 0; k < bs.nodes.size(); ++k)
+      for (int j = 0; j < 6; ++j) {
+        const int i = 6 * bs.nodes[k] + j;
+        const double f1 = fext1[i] + fc1_[i] - fint_[i];
+        const double inertia = mass_[i] * ((1 - am) * a_[i] + am * an_[i]);
+        const double damping = c * mass_[i] * ((1 - af) * v_[i] + af * vn_[i]);
+        const double ri = bs.fixed[6 * k + j] ? 0.0 : (1 - af) * f1 + af * fnet0_[i] - inertia - damping;
+        r_[i] = ri;
+        num += ri * ri;
+        den += fext1[i] * fext1[i] + fint_[i] * fint_[i] + inertia * inertia + fc1_[i] * fc1_[i];
+      }
+  }
+  // The whole residual (for diagnoses); returns its norm relative to the force scale.
+  double residual() {
+    BodyStepSums s;
+    for (const auto& bs : systems_) residual_body(bs, fext1_, s.residual_num, s.residual_den);
+    return s.residual();
+  }
+
+  // The start of a body's step: the state at t_n kept, the predictor "no motion" (Du = 0) with its
+  // Newmark velocity and acceleration, the velocity contact sees, and the loads at t_{n+1}.
+  void predict_body(int b, const Loads& loads) {
+    auto& bs = systems_[b];
+    const double dt = opt_.dt;
+    for (int n : bs.nodes) {
+      const int i = 6 * n;
+      u0_[n] = u_[n];
+      R0_[n] = R_[n];
+      vn_.segment<6>(i) = v_.segment<6>(i);
+      an_.segment<6>(i) = a_.segment<6>(i);
+      Du_.segment<6>(i).setZero();
+      v_contact_.segment<6>(i) = vn_.segment<6>(i) + dt * an_.segment<6>(i);
+    }
+    kinematics_body(b, false);  // positions stay: Du = 0
+    if (bs.rigid) {
+      bs.rigid_c0 = mass_centre(bs);
+      bs.rigid_dc.setZero();
+      bs.rigid_Q.setIdentity();
+    }
+    external_forces_body(b, loads, fext1_);
+  }
+
+  // Newmark's velocity and acceleration from the increment Du, and (positions) the nodes' placement.
+  void kinematics_body(int b, bool positions = true) {
+    const double dt = opt_.dt, be = coef_.beta, g = coef_.gamma;
+    for (int n : systems_[b].nodes) {
+      const int i = 6 * n;
+      a_.segment<6>(i) = (Du_.segment<6>(i) - dt * vn_.segment<6>(i) - dt * dt * (0.5 - be) * an_.segment<6>(i)) /
+                         (be * dt * dt);
+      v_.segment<6>(i) = vn_.segment<6>(i) + dt * ((1 - g) * an_.segment<6>(i) + g * a_.segment<6>(i));
+      if (!positions) continue;
+      u_[n] = u0_[n] + Du_.segment<3>(i);
+      x_[n] = model_.node(n).X + u_[n];
+      R_[n] = detail::rotation_exp(Du_.segment<3>(i + 3)) * R0_[n];
+    }
+  }
+
+  // The end of a body's step: the work of the forces over the increment (trapezoidal), the element
+  // histories committed, the ASI rule applied (integration points move for the next step), and the
+  // forces the next step starts from.
+  void commit_body(int b, BodyStepSums& s) {
+    auto& bs = systems_[b];
+    for (int n : bs.nodes) {
+      const int i = 6 * n;
+      const auto du = Du_.segment<6>(i);
+      s.external_work += 0.5 * du.dot(fext0_.segment<6>(i) + fext1_.segment<6>(i) - fgrav_.segment<6>(i) * 2.0);
+      s.contact_work += 0.5 * du.dot(fc0_.segment<6>(i) + fc1_.segment<6>(i));
+      if (opt_.mass_damping > 0)
+        s.damping_work -= 0.5 * opt_.mass_damping *
+                          du.dot((mass_.segment<6>(i).array() * (vn_.segment<6>(i) + v_.segment<6>(i)).array()).matrix());
+    }
+    for (int e : bs.elements) std::swap(committed_[e], trial_[e]);
+    s.shifted += shift_integration_points(b);
+    for (int n : bs.nodes) {
+      const int i = 6 * n;
+      fext0_.segment<6>(i) = fext1_.segment<6>(i);
+      fc0_.segment<6>(i) = fc1_.segment<6>(i);
+      fnet0_.segment<6>(i) = fext1_.segment<6>(i) + fc1_.segment<6>(i) - fint_.segment<6>(i);
+    }
+    ++bs.steps_since_refresh;
+  }
+
+  double static_residual() {
+    double num = 0, den = 0;
+    for (int i = 0; i < r_.size(); ++i) {
+      const double ri = is_fixed(i) ? 0.0 : fext1_[i] - fint_[i];
+      r_[i] = ri;
+      num += ri * ri;
+      den += fext1_[i] * fext1_[i] + fint_[i] * fint_[i];
+    }
+    return std::sqrt(num / std::max(den, 1e-300));
+  }
+
+  // Solves every body's system for the residual r_ and adds the result to Du_ (statics). Returns the
+  // number of bodies whose matrix was refreshed.
+  int solve_bodies() {
+    body_sweep([&](int b) { solve_body(b, sums_[b]); });
+    return sum_bodies(t_).refreshed;
+  }
+
+  // A body's update from its residual: the solve (refreshing the matrix when due), on the first solve
+  // of a step the rigid part of the increment put on the finite rotation, then the nodes moved and the
+  // element forces evaluated there. False when the solve failed.
+  bool update_body(int b, BodyStepSums& s, bool first_solve) {
+    timed(s.solve, [&] {
+      solve_body(b, s);
+      if (first_solve && opt_.finite_rotation_update && !s.solve_failed) finite_rotation_body(b);
+    });
+    if (s.solve_failed) return false;
+    timed(s.elements, [&] {
+      kinematics_body(b);
+      evaluate_body(b, systems_[b].needs_refresh);
+    });
+    return true;
+  }
+
+  // Solves one body's system for its part of the residual r_ and adds the result to Du_, refreshing
+  // (assembling and factorising) its matrix first when it is due.
+  void solve_body(int b, BodyStepSums& s) {
+    auto& bs = systems_[b];
+    if (bs.steps_since_refresh >= opt_.refresh_interval) bs.needs_refresh = true;
+    if (bs.needs_refresh && !bs.assembled) evaluate_body(b, true);
+    if (bs.rigid) {
+      if (static_) {
+        s.solve_failed = true;
+        return;
+      }
+      solve_rigid(bs);
+      bs.needs_refresh = false;
+      bs.assembled = false;
+      return;
+    }
+    const bool reuse = opt_.refresh_interval > 1 && !static_;
+    Mat3 Q = Mat3::Identity();
+    if (reuse) Q = body_rotation(bs);
+    if (bs.needs_refresh) {
+      try {
+        timed(s.factorize, [&] { solvers_[b]->factorize(bs.K); });
+      } catch (const std::exception&) {
+        s.solve_failed = true;
+        return;
+      }
+      bs.Q_factor = Q;
+      bs.needs_refresh = false;
+      bs.assembled = false;
+      bs.steps_since_refresh = 0;
+      ++s.refreshed;
+    }
+    // Take the body's rigid rotation since the factorisation out of the right-hand side (P^T r),
+    // solve with the old matrix, put it back (P y): exact for a rigidly rotated body.
+    const Mat3 P = Q * bs.Q_factor.transpose();
+    for (size_t k = 0; k < bs.nodes.size(); ++k) {
+      const int g = bs.nodes[k];
+      bs.r.segment<3>(6 * k) = P.transpose() * r_.segment<3>(6 * g);
+      bs.r.segment<3>(6 * k + 3) = P.transpose() * r_.segment<3>(6 * g + 3);
+    }
+    if (!solvers_[b]->solve(bs.r, bs.dx)) s.solve_failed = true;
+    for (size_t k = 0; k < bs.nodes.size(); ++k) {
+      const int g = bs.nodes[k];
+      Du_.segment<3>(6 * g) += P * bs.dx.segment<3>(6 * k);
+      Du_.segment<3>(6 * g + 3) += P * bs.dx.segment<3>(6 * k + 3);
+    }
+  }
+
+  // The linear solve moves the nodes of a turning body along tangents: each member stretches by
+  // (w dt)^2 / 2 of its length, a spurious axial force that, carried over, excites the stiff axial
+  // modes, which the integrator then damps: fast rigid rotation loses its energy (docs/core/theory.md).
+  // Here the rigid part of each free body's increment is put on the finite rotation: with theta the
+  // body's least-squares turn of the increment and c its mass centre at the step's start, every node's
+  // translation gets (exp(theta) - I - [theta]x)(x0 - c), exact for a rigid turn and O(theta^2) for
+  // the rest. Bodies with a fixed DOF (they do not turn freely) and rigid bodies (solved on the finite
+  // rotation already) are left as they are.
+  void finite_rotation_body(int b) {
+    const auto& bs = systems_[b];
+    if (bs.rigid || bs.nodes.size() < 2) return;
+    for (char f : bs.fixed)
+      if (f) return;
+    Vec3 c = Vec3::Zero(), dc = Vec3::Zero();
+    double m = 0;
+    for (int n : bs.nodes) {
+      c += mass_[6 * n] * x_[n];
+      dc += mass_[6 * n] * Du_.segment<3>(6 * n);
+      m += mass_[6 * n];
+    }
+    c /= m;
+    dc /= m;
+    // The body's rotation increment: the least-squares rigid turn of the translational increments
+    // about the mass centre, J theta = sum m r x (du - dc).
+    Mat3 J = Mat3::Zero();
+    Vec3 h = Vec3::Zero();
+    for (int n : bs.nodes) {
+      const Vec3 r = x_[n] - c;
+      J += mass_[6 * n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
+      h += mass_[6 * n] * r.cross(Du_.segment<3>(6 * n) - dc);
+    }
+    const Eigen::LDLT<Mat3> ldlt(J);
+    if (ldlt.info() != Eigen::Success || ldlt.rcond() < 1e-9) return;  // a straight bar: no unique turn
+    const Vec3 theta = ldlt.solve(h);
+    if (!theta.allFinite() || theta.norm() < 1e-12) return;
+    const Mat3 C = detail::rotation_exp(theta) - Mat3::Identity() - detail::skew(theta);
+    for (int n : bs.nodes) Du_.segment<3>(6 * n) += C * (x_[n] - c);
+  }
+
+  Vec3 mass_centre(const detail::BodySystem& bs) const {
+    Vec3 c = Vec3::Zero();
+    double m = 0;
+    for (int n : bs.nodes) {
+      c += mass_[6 * n] * x_[n];
+      m += mass_[6 * n];
+    }
+    return c / m;
+  }
+
+  // Newton step of a rigid body: nodal increments dx_n = dc + dtheta x r_n, rotations dtheta; the
+  // nodal residual and effective mass reduced to 6 x 6 (T^T r, T^T M* T), solved, and the nodes
+  // placed exactly on the rigid motion from the start of the step (finite rotation, no drift).
+  void solve_rigid(detail::BodySystem& bs) {
+    const double dt = opt_.dt;
+    const double mf = (1 - coef_.alpha_m) / (coef_.beta * dt * dt) +
+                      (1 - coef_.alpha_f) * coef_.gamma / (coef_.beta * dt) * opt_.mass_damping;
+    const Vec3 c = mass_centre(bs);
+    Eigen::Matrix<double, 6, 6> A = Eigen::Matrix<double, 6, 6>::Zero();
+    Vec6 R6 = Vec6::Zero();
+    for (int n : bs.nodes) {
+      const Vec3 r = x_[n] - c;
+      const Mat3 S = detail::skew(r);  // dtheta x r = -S dtheta
+      const double m = mf * mass_[6 * n], J = mf * mass_[6 * n + 3];
+      A.block<3, 3>(0, 0) += m * Mat3::Identity();
+      A.block<3, 3>(0, 3) -= m * S;
+      A.block<3, 3>(3, 0) += m * S;
+      A.block<3, 3>(3, 3) += -m * S * S + J * Mat3::Identity();
+      const Vec3 rf = r_.segment<3>(6 * n), rm = r_.segment<3>(6 * n + 3);
+      R6.head<3>() += rf;
+      R6.tail<3>() += S * rf + rm;
+    }
+    const Vec6 dq = A.ldlt().solve(R6);
+    bs.rigid_dc += dq.head<3>();
+    bs.rigid_Q = detail::rotation_exp(dq.tail<3>()) * bs.rigid_Q;
+    const Vec3 rot = detail::rotation_log(bs.rigid_Q);
+    for (int n : bs.nodes) {
+      const Vec3 x0 = model_.node(n).X + u0_[n];
+      Du_.segment<3>(6 * n) = bs.rigid_c0 + bs.rigid_dc + bs.rigid_Q * (x0 - bs.rigid_c0) - x0;
+      Du_.segment<3>(6 * n + 3) = rot;
+    }
+  }
+
+  // Names the first node whose state is not finite, for the diagnosis of a diverged step.
+  std::string non_finite_diagnosis() const {
+    for (int n = 0; n < model_.num_nodes(); ++n) {
+      const bool bad = !x_[n].allFinite() || !v_.segment<6>(6 * n).allFinite() || !Du_.segment<6>(6 * n).allFinite() ||
+                       !r_.segment<6>(6 * n).allFinite();
+      if (bad)
+        return "node " + std::to_string(n) + " of body '" + model_.body(model_.node(n).body).name +
+               "' has a non-finite position, velocity or force; the step diverged (try a smaller dt or a softer "
+               "penalty)";
+    }
+    return "a non-finite value appeared; the step diverged (try a smaller dt)";
+  }
+
+  double dof_value(int n, int dof) const {
+    return dof < 3 ? u_[n][dof] : detail::rotation_log(R_[n])[dof - 3];
+  }
+  // Scale of the spring targets at the time of the configuration: load_scale(t_{n+1}) while a step
+  // solves for t_{n+1}, like the loads (load_scale(t_n) lagged the targets one step behind them).
+  double spring_scale() const { return static_ ? load_factor_ : (load_scale_ ? load_scale_(t_state_) : 1.0); }
+
+  Mat3 body_rotation(const detail::BodySystem& bs) const {
+    Vec3 xc = Vec3::Zero();
+    for (int n : bs.nodes) xc += x_[n];
+    xc /= std::max<size_t>(1, bs.nodes.size());
+    return detail::best_rotation(
+        static_cast<int>(bs.nodes.size()),
+        [&](int i) { return std::pair<Vec3, Vec3>(model_.node(bs.nodes[i]).X, x_[bs.nodes[i]]); }, bs.Xc, xc);
+  }
+
+  // The ASI rule on one body's elements, from their committed states: returns how many integration
+  // points moved. A body with a moved point has its forces evaluated again at the new points (so the
+  // next residual sees them) and its matrix refreshed; the other bodies are not touched.
+  int shift_integration_points(int b) {
+    int shifted = 0;
+    if constexpr (requires(State s) { s.hinge; s.plastic_increment; }) {
+      auto& bs = systems_[b];
+      int skip = -1;  // a partner whose point was just moved: its d_ and new s are not in equilibrium yet
+      for (int e : bs.elements) {
+        if (e == skip) continue;  // checked at the next step, from forces at its new point
+        const int p = model_.elements()[e].partner;  // pairs are consecutive elements of one member
+        State* partner = p >= 0 ? &committed_[p] : nullptr;
+        const ElementProps* pp = p >= 0 ? &props_[p] : nullptr;
+        if (Element::shift_integration_point(props_[e], committed_[e], d_[e], partner, pp)) {
+          ++shifted;
+          bs.needs_refresh = true;
+          if (p > e) skip = p;
+        }
+      }
+      if (shifted) {
+        evaluate_body(b, bs.needs_refresh);
+        for (int e : bs.elements) committed_[e] = trial_[e];
+      }
+    }
+    return shifted;
+  }
+  int shift_integration_points() {
+    int shifted = 0;
+    for (int b = 0; b < model_.num_bodies(); ++b) shifted += shift_integration_points(b);
+    return shifted;
+  }
+
+  double strain_energy(int e) const {
+    if constexpr (requires(State s) { s.eps_p; }) {
+      const auto s = Element::section_forces(props_[e], committed_[e], d_[e]).as_vector();
+      double w = 0;
+      for (int i = 0; i < 6; ++i) w += 0.5 * s[i] * s[i] / props_[e].D[i];
+      return w * props_[e].L0;
+    } else {
+      return 0.5 * d_[e].dot(fl_[e]);
+    }
+  }
+
+  const Model& model_;
+  Integrator integrator_;
+  SimulationOptions opt_;
+  IntegratorCoefficients coef_;
+  Contact contact_;
+  std::function<Vec3(double)> table_acc_;
+  std::function<double(double)> load_scale_;
+  double t_ = 0, load_factor_ = 1;
+  double t_state_ = 0;  // time of the current configuration: t_ between steps, t_{n+1} during a step
+  long steps_ = 0;
+  bool started_ = false, static_ = false;
+
+  std::vector<Vec3> x_, u_, u0_;  // positions, displacements (kept apart for precision)
+  std::vector<Mat3> R_, R0_;
+  Eigen::VectorXd v_, a_, vn_, an_, v_contact_, Du_, r_, fint_, fext0_, fext1_, fc0_, fc1_, fnet0_, mass_, nodal_load_, fgrav_;
+  std::vector<ElementProps> props_;
+  std::vector<Mat3> E0_, frames_;
+  std::vector<Vec12> d_, fl_;
+  std::vector<State> committed_, trial_;
+  std::vector<int> local_index_;
+  std::vector<detail::BodySystem> systems_;
+  std::vector<std::unique_ptr<LinearSolver>> solvers_;  // Eigen's solvers are not copyable
+  EnergyLedger ledger_;
+  StepTimings timings_;
+  std::vector<BodyStepSums> sums_;  // each body's part of the current step
+  std::vector<int> body_order_;  // bodies by decreasing size: the largest starts first in parallel loops
+  template <class F>
+  void timed(double& acc, F&& f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    acc += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  struct Spring {
+    int node, dof;
+    double k, target;
+  };
+  std::vector<Spring> springs_;
+};
+
+}  // namespace furniture_fem

@@ -1,0 +1,10 @@
+#pragma once
+// furniture_fem/furniture_fem.hpp: everything.
+#include "core.hpp"
+#include "odeint.hpp"
+#include "contact.hpp"
+#include "excitation.hpp"
+#include "furniture.hpp"
+#include "io.hpp"
+#include "figures.hpp"
+#include "scene.hpp"

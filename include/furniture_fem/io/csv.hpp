@@ -1,0 +1,215 @@
+#pragma once
+// furniture_fem/io/csv.hpp: time-series CSV output and a reader that returns columns by name.
+//
+// CsvWriter streams numeric rows under a header written once. Rows are buffered in memory and
+// written whole, then flushed every `flush_rows` rows or `flush_seconds`, whichever comes first, so a
+// run killed by Ctrl-C leaves a file whose complete lines are all valid. read_csv() drops a last line
+// that lacks its newline (the row being written when the run died) and reports it via truncated().
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "../core/errors.hpp"
+
+namespace furniture_fem {
+
+struct CsvOptions {
+  int precision = 15;             // significant digits (as printf %.*g); 15 keeps ~1e-15 relative
+  std::size_t flush_rows = 100;   // flush at least every this many rows ...
+  double flush_seconds = 1.0;     // ... and at least this often (for slow runs)
+};
+
+namespace detail::csv {
+// RFC 4180 quoting for header names that contain a comma, a quote or a line break.
+inline std::string quote(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+// Splits one line at commas outside quotes; quoted fields lose their quotes ("" -> ").
+inline std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> f(1);
+  bool q = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (q) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') f.back() += '"', ++i;
+      else if (c == '"') q = false;
+      else f.back() += c;
+    } else if (c == '"') q = true;
+    else if (c == ',') f.emplace_back();
+    else f.back() += c;
+  }
+  return f;
+}
+
+inline std::string trim(const std::string& s) {
+  const auto a = s.find_first_not_of(" \t"), b = s.find_last_not_of(" \t");
+  return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
+}
+}  // namespace detail::csv
+
+class CsvWriter {
+ public:
+  CsvWriter(std::string path, std::vector<std::string> columns, CsvOptions opt = {})
+      : path_(std::move(path)), columns_(std::move(columns)), opt_(opt), file_(path_, std::ios::binary | std::ios::trunc) {
+    if (!file_) throw std::runtime_error("CsvWriter: cannot open '" + path_ + "' for writing");
+    if (columns_.empty()) throw std::invalid_argument("CsvWriter '" + path_ + "': no columns");
+    for (std::size_t i = 0; i < columns_.size(); ++i) {
+      if (i) buf_ += ',';
+      buf_ += detail::csv::quote(columns_[i]);
+    }
+    buf_ += '\n';
+    flush();  // the header is on disk even if the first row never comes
+  }
+  CsvWriter(const CsvWriter&) = delete;
+  CsvWriter& operator=(const CsvWriter&) = delete;
+  ~CsvWriter() {
+    try {
+      flush();
+    } catch (...) {  // destructors must not throw; the last rows are lost, as in a crash
+    }
+  }
+
+  void row(const double* values, std::size_t n) {
+    if (n != columns_.size())
+      throw std::invalid_argument("CsvWriter '" + path_ + "': row " + std::to_string(rows_ + 1) + " has " +
+                                  std::to_string(n) + " values for " + std::to_string(columns_.size()) + " columns");
+    char num[64];
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i) buf_ += ',';
+      // to_chars ignores the C locale, so a decimal comma can never corrupt the file.
+      const auto r = std::to_chars(num, num + sizeof num, values[i], std::chars_format::general, opt_.precision);
+      buf_.append(num, r.ptr);
+    }
+    buf_ += '\n';
+    ++rows_;
+    if (++pending_ >= opt_.flush_rows || std::chrono::steady_clock::now() - last_flush_ >= flush_period()) flush();
+  }
+  void row(const std::vector<double>& v) { row(v.data(), v.size()); }
+  void row(std::initializer_list<double> v) { row(v.begin(), v.size()); }
+
+  // Writes buffered rows and flushes the stream to the operating system.
+  void flush() {
+    if (!buf_.empty()) {
+      file_.write(buf_.data(), std::streamsize(buf_.size()));
+      buf_.clear();
+    }
+    file_.flush();
+    pending_ = 0;
+    last_flush_ = std::chrono::steady_clock::now();
+    if (!file_) throw std::runtime_error("CsvWriter: error while writing '" + path_ + "'");
+  }
+
+  std::size_t rows() const { return rows_; }
+  const std::string& path() const { return path_; }
+  const std::vector<std::string>& columns() const { return columns_; }
+
+ private:
+  std::chrono::steady_clock::duration flush_period() const {
+    return std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(opt_.flush_seconds));
+  }
+  std::string path_;
+  std::vector<std::string> columns_;
+  CsvOptions opt_;
+  std::ofstream file_;
+  std::string buf_;
+  std::size_t rows_ = 0, pending_ = 0;
+  std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
+};
+
+// Numeric columns of a CSV file with a header line. Lines starting with '#' and blank lines are
+// skipped; an empty field reads as NaN.
+class CsvTable {
+ public:
+  const std::vector<std::string>& columns() const { return names_; }
+  std::size_t rows() const { return data_.empty() ? 0 : data_[0].size(); }
+  bool has(const std::string& name) const { return find(name) < names_.size(); }
+  // True when the last line had no newline (a run killed mid-row) and was dropped.
+  bool truncated() const { return truncated_; }
+
+  const std::vector<double>& column(const std::string& name) const {
+    const std::size_t i = find(name);
+    if (i == names_.size()) throw std::out_of_range("CSV '" + path_ + "' has no column '" + name + "'");
+    return data_[i];
+  }
+  const std::vector<double>& column(std::size_t i) const { return data_.at(i); }
+
+  static CsvTable read(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) throw std::runtime_error("read_csv: cannot open '" + path + "'");
+    std::ostringstream ss;
+    ss << f.rdbuf();
+    const std::string text = ss.str();
+
+    CsvTable t;
+    t.path_ = path;
+    std::size_t pos = 0;
+    long lineno = 0;
+    bool header = false;
+    while (pos < text.size()) {
+      const std::size_t nl = text.find('\n', pos);
+      ++lineno;
+      if (nl == std::string::npos) {  // unterminated last line: the writer died mid-row
+        t.truncated_ = true;
+        break;
+      }
+      std::string line = text.substr(pos, nl - pos);
+      pos = nl + 1;
+      if (!line.empty() && line.back() == '\r') line.pop_back();
+      if (detail::csv::trim(line).empty() || line[0] == '#') continue;
+      std::vector<std::string> fields = detail::csv::split(line);
+      if (!header) {
+        for (auto& s : fields) t.names_.push_back(detail::csv::trim(s));
+        t.data_.resize(t.names_.size());
+        header = true;
+        continue;
+      }
+      if (fields.size() != t.names_.size())
+        throw InputError(path, lineno, "", "row has " + std::to_string(fields.size()) + " fields, header has " +
+                                               std::to_string(t.names_.size()));
+      for (std::size_t i = 0; i < fields.size(); ++i) t.data_[i].push_back(parse(fields[i], path, lineno, t.names_[i]));
+    }
+    if (!header) throw InputError(path, 0, "", "no header line");
+    return t;
+  }
+
+ private:
+  std::size_t find(const std::string& name) const {
+    std::size_t i = 0;
+    while (i < names_.size() && names_[i] != name) ++i;
+    return i;
+  }
+  static double parse(const std::string& raw, const std::string& path, long line, const std::string& col) {
+    const std::string s = detail::csv::trim(raw);
+    if (s.empty()) return std::nan("");
+    const char* first = s.data() + (s[0] == '+' ? 1 : 0);
+    double v = 0;
+    const auto r = std::from_chars(first, s.data() + s.size(), v);  // locale-independent, like the writer
+    if (r.ec != std::errc() || r.ptr != s.data() + s.size())
+      throw InputError(path, line, col, "'" + s + "' is not a number");
+    return v;
+  }
+  std::string path_;
+  std::vector<std::string> names_;
+  std::vector<std::vector<double>> data_;
+  bool truncated_ = false;
+};
+
+inline CsvTable read_csv(const std::string& path) { return CsvTable::read(path); }
+
+}  // namespace furniture_fem
+
+namespace ffem = furniture_fem;

@@ -1,0 +1,231 @@
+#pragma once
+// furniture_fem/io/vtk.hpp: ParaView output for beam models.
+//
+// write_vtu() writes one state of a line mesh as a VTK XML UnstructuredGrid (.vtu, ASCII data):
+// points, two-node VTK_LINE cells, and named point/cell fields (scalars or 3-vectors). PvdWriter
+// collects such files into a time series (.pvd) that ParaView opens as one animated data set.
+// Both files are written to "<path>.tmp" and renamed, so a reader (or a Ctrl-C) never sees half a file.
+#include <Eigen/Core>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <vector>
+
+namespace furniture_fem {
+
+inline constexpr int vtk_line = 3;  // VTK cell type of a two-node line
+
+struct LineMesh {
+  struct Field {
+    std::string name;
+    int components = 1;          // 1 (scalar) or 3 (vector)
+    std::vector<double> values;  // components * (points or cells), interleaved x y z
+  };
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::array<int, 2>> lines;  // point indices
+  std::vector<Field> point_data, cell_data;
+
+  LineMesh& add_point_scalar(std::string name, std::vector<double> v) {
+    point_data.push_back({std::move(name), 1, std::move(v)});
+    return *this;
+  }
+  LineMesh& add_point_vector(std::string name, const std::vector<Eigen::Vector3d>& v) {
+    point_data.push_back({std::move(name), 3, flatten(v)});
+    return *this;
+  }
+  LineMesh& add_cell_scalar(std::string name, std::vector<double> v) {
+    cell_data.push_back({std::move(name), 1, std::move(v)});
+    return *this;
+  }
+  LineMesh& add_cell_vector(std::string name, const std::vector<Eigen::Vector3d>& v) {
+    cell_data.push_back({std::move(name), 3, flatten(v)});
+    return *this;
+  }
+
+ private:
+  static std::vector<double> flatten(const std::vector<Eigen::Vector3d>& v) {
+    std::vector<double> out;
+    out.reserve(v.size() * 3);
+    for (const auto& p : v) out.insert(out.end(), {p.x(), p.y(), p.z()});
+    return out;
+  }
+};
+
+namespace detail::vtk {
+
+inline std::string xml_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+// Shortest text that reads back to the same double (std::to_chars), so values round-trip exactly.
+inline void put_number(std::string& out, double v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, r.ptr);
+}
+
+// Writes via "<path>.tmp" + rename; errors name the path.
+inline void write_atomically(const std::string& path, const std::string& text, const char* who) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    if (!f) throw std::runtime_error(std::string(who) + ": cannot open '" + tmp + "' for writing");
+    f.write(text.data(), std::streamsize(text.size()));
+    f.close();
+    if (!f) throw std::runtime_error(std::string(who) + ": error while writing '" + tmp + "'");
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw std::runtime_error(std::string(who) + ": cannot rename '" + tmp + "' to '" + path + "': " + ec.message());
+}
+
+inline void check_field(const LineMesh::Field& f, std::size_t count, const char* where, const std::string& path) {
+  const auto bad = [&](const std::string& msg) {
+    return std::invalid_argument("write_vtu '" + path + "': " + where + " field '" + f.name + "': " + msg);
+  };
+  if (f.components != 1 && f.components != 3) throw bad("components must be 1 or 3, got " + std::to_string(f.components));
+  if (f.values.size() != count * std::size_t(f.components))
+    throw bad("has " + std::to_string(f.values.size()) + " values, expected " +
+              std::to_string(count * std::size_t(f.components)));
+  // VTK's ASCII reader cannot parse "nan"/"inf"; a non-finite value is a failed run, not output.
+  for (std::size_t i = 0; i < f.values.size(); ++i)
+    if (!std::isfinite(f.values[i]))
+      throw bad("value " + std::to_string(i / std::size_t(f.components)) + " is not finite");
+}
+
+inline void put_fields(std::string& out, const std::vector<LineMesh::Field>& fields, const char* tag) {
+  out += "      <";
+  out += tag;
+  // The first scalar/vector field becomes ParaView's active one.
+  for (int comp : {1, 3})
+    for (const auto& f : fields)
+      if (f.components == comp) {
+        out += comp == 1 ? " Scalars=\"" : " Vectors=\"";
+        out += xml_escape(f.name) + "\"";
+        break;
+      }
+  out += ">\n";
+  for (const auto& f : fields) {
+    out += "        <DataArray type=\"Float64\" Name=\"" + xml_escape(f.name) + "\" NumberOfComponents=\"" +
+           std::to_string(f.components) + "\" format=\"ascii\">\n";
+    for (std::size_t i = 0; i < f.values.size(); ++i) {
+      out += (i % std::size_t(f.components) == 0) ? "          " : " ";
+      put_number(out, f.values[i]);
+      if ((i + 1) % std::size_t(f.components) == 0) out += '\n';
+    }
+    out += "        </DataArray>\n";
+  }
+  out += "      </";
+  out += tag;
+  out += ">\n";
+}
+
+}  // namespace detail::vtk
+
+// Writes `mesh` as a .vtu file. Throws std::invalid_argument for an inconsistent mesh (bad index,
+// field of the wrong length, non-finite value) and std::runtime_error if the file cannot be written.
+inline void write_vtu(const std::string& path, const LineMesh& mesh) {
+  const std::size_t np = mesh.points.size(), nc = mesh.lines.size();
+  for (std::size_t i = 0; i < np; ++i)
+    if (!mesh.points[i].allFinite())
+      throw std::invalid_argument("write_vtu '" + path + "': point " + std::to_string(i) + " is not finite");
+  for (std::size_t c = 0; c < nc; ++c)
+    for (int k : mesh.lines[c])
+      if (k < 0 || std::size_t(k) >= np)
+        throw std::invalid_argument("write_vtu '" + path + "': line " + std::to_string(c) + " uses point " +
+                                    std::to_string(k) + " of " + std::to_string(np));
+  for (const auto& f : mesh.point_data) detail::vtk::check_field(f, np, "point", path);
+  for (const auto& f : mesh.cell_data) detail::vtk::check_field(f, nc, "cell", path);
+
+  std::string out;
+  out.reserve(64 * (np + nc) + 1024);
+  out += "<?xml version=\"1.0\"?>\n";
+  out += "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n";
+  out += "  <UnstructuredGrid>\n";
+  out += "    <Piece NumberOfPoints=\"" + std::to_string(np) + "\" NumberOfCells=\"" + std::to_string(nc) + "\">\n";
+  detail::vtk::put_fields(out, mesh.point_data, "PointData");
+  detail::vtk::put_fields(out, mesh.cell_data, "CellData");
+  out += "      <Points>\n        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (const auto& p : mesh.points) {
+    out += "          ";
+    for (int k = 0; k < 3; ++k) {
+      if (k) out += ' ';
+      detail::vtk::put_number(out, p[k]);
+    }
+    out += '\n';
+  }
+  out += "        </DataArray>\n      </Points>\n      <Cells>\n";
+  out += "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+  for (const auto& l : mesh.lines) out += "          " + std::to_string(l[0]) + " " + std::to_string(l[1]) + "\n";
+  out += "        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+  for (std::size_t c = 0; c < nc; ++c) out += "          " + std::to_string(2 * (c + 1)) + "\n";
+  out += "        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+  for (std::size_t c = 0; c < nc; ++c) out += "          " + std::to_string(vtk_line) + "\n";
+  out += "        </DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+  detail::vtk::write_atomically(path, out, "write_vtu");
+}
+
+// A .pvd time series. Call write() after each add() to keep the collection on disk up to date while
+// a long run is still going. Relative file names are written as given (ParaView resolves them
+// against the .pvd's folder); absolute ones are made relative to that folder when possible.
+class PvdWriter {
+ public:
+  explicit PvdWriter(std::string path) : path_(std::move(path)) {}
+
+  // Times must increase strictly: a repeated or decreasing time is an output bug.
+  PvdWriter& add(double time, const std::string& file) {
+    if (!std::isfinite(time) || (!entries_.empty() && !(time > entries_.back().time)))
+      throw std::invalid_argument("PvdWriter '" + path_ + "': time " + std::to_string(time) + " for '" + file +
+                                  "' does not follow " + (entries_.empty() ? "" : std::to_string(entries_.back().time)));
+    std::filesystem::path f(file);
+    if (f.is_absolute()) {
+      const auto dir = std::filesystem::absolute(std::filesystem::path(path_)).parent_path();
+      const auto rel = f.lexically_proximate(dir);
+      if (!rel.empty()) f = rel;
+    }
+    entries_.push_back({time, f.generic_string()});
+    return *this;
+  }
+
+  void write() const {
+    std::string out = "<?xml version=\"1.0\"?>\n";
+    out += "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n";
+    for (const auto& e : entries_) {
+      out += "    <DataSet timestep=\"";
+      detail::vtk::put_number(out, e.time);
+      out += "\" group=\"\" part=\"0\" file=\"" + detail::vtk::xml_escape(e.file) + "\"/>\n";
+    }
+    out += "  </Collection>\n</VTKFile>\n";
+    detail::vtk::write_atomically(path_, out, "PvdWriter");
+  }
+
+  std::size_t size() const { return entries_.size(); }
+  const std::string& path() const { return path_; }
+
+ private:
+  struct Entry {
+    double time;
+    std::string file;
+  };
+  std::string path_;
+  std::vector<Entry> entries_;
+};
+
+}  // namespace furniture_fem
+
+namespace ffem = furniture_fem;
