@@ -40,6 +40,7 @@ inline std::vector<ItemInfo> build_item(const SceneSpec& scene, size_t index, Mo
   const ItemKindEntry& kind = item_kind_of(item);
   std::vector<ItemInfo> out = kind.build(model, at, kind.values(p.kind_values), o);
   for (auto& info : out) {
+    info.kind = kind.kind;  // a kind may reuse another's builder (a refrigerator built as a locker)
     auto& c = info.contact;
     if (p.alpha_kgf) c.alpha = *p.alpha_kgf * newtons_per_kgf;
     if (p.dc_kgf) c.Dc = *p.dc_kgf * newtons_per_kgf;
