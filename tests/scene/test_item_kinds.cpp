@@ -132,10 +132,14 @@ TEST_CASE("a kind's declared default is what is built when the key is absent", "
 }
 
 TEST_CASE("the item parameter tables of docs/scene/scene_file.md are the generated ones", "[scene][kinds][docs]") {
-  const auto page = std::filesystem::path(__FILE__).parent_path() / "../../docs/scene/scene_file.md";
+  // __FILE__ may be relative to the build folder of the tests, which is where the executable sits.
+  std::filesystem::path here(__FILE__);
+  if (here.is_relative()) here = std::filesystem::read_symlink("/proc/self/exe").parent_path() / here;
+  const auto page = here.parent_path() / "../../docs/scene/scene_file.md";
   const std::string text = read_text(page);
   const std::string begin = "<!-- begin: item_parameter_tables() -->\n", end = "<!-- end: item_parameter_tables() -->";
   const auto a = text.find(begin), b = text.find(end);
+  INFO("docs page: " << page.string());
   REQUIRE(a != std::string::npos);
   REQUIRE(b != std::string::npos);
   const std::string in_docs = text.substr(a + begin.size(), b - a - begin.size());
