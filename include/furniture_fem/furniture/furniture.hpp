@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "../core/model.hpp"
+#include "item_kind.hpp"
 
 #define FURNITURE_FEM_FURNITURE_INTERNAL
 #include "detail/furniture_calibration.hpp"
@@ -38,34 +39,6 @@ inline constexpr double mu_between_furniture = 0.169;
 // ---------------------------------------------------------------------------------------------------
 // Kinds and the paper's data
 // ---------------------------------------------------------------------------------------------------
-
-enum class ItemKind { tall_cabinet, separated_cabinets, side_table, desk, office_chair, bookshelf, locker, table };
-
-inline constexpr std::array<std::pair<ItemKind, std::string_view>, 8> item_kind_names{{
-    {ItemKind::tall_cabinet, "tall_cabinet"},
-    {ItemKind::separated_cabinets, "separated_cabinets"},
-    {ItemKind::side_table, "side_table"},
-    {ItemKind::desk, "desk"},
-    {ItemKind::office_chair, "office_chair"},
-    {ItemKind::bookshelf, "bookshelf"},
-    {ItemKind::locker, "locker"},
-    {ItemKind::table, "table"},
-}};
-
-inline std::string to_string(ItemKind k) {
-  for (auto [kind, name] : item_kind_names)
-    if (kind == k) return std::string(name);
-  return "unknown";
-}
-inline std::optional<ItemKind> item_kind_from_string(std::string_view s) {
-  for (auto [kind, name] : item_kind_names)
-    if (name == s) return kind;
-  return std::nullopt;
-}
-// The paper's items have the sizes of Table 2; the generic ones take W, D, H.
-inline bool is_paper_item(ItemKind k) {
-  return k != ItemKind::bookshelf && k != ItemKind::locker && k != ItemKind::table;
-}
 
 // How finely an item is meshed. full: the paper's 50 mm elements and tuned panel grids; coarse: grid
 // and element length doubled; rigid: the coarse mesh, flagged for a simulation that treats the body

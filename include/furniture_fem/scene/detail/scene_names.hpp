@@ -1,0 +1,75 @@
+#pragma once
+// Internal: the names scene files use for enumerations, and the contact overrides each law reads; shared
+// by the reader and the writer. Users include furniture_fem/scene/scene.hpp, not this file.
+#ifndef FURNITURE_FEM_SCENE_INTERNAL
+#error "furniture_fem/scene/detail/scene_names.hpp is internal: include <furniture_fem/scene/scene.hpp>"
+#endif
+#include <array>
+#include <string>
+#include <string_view>
+
+#include "../spec.hpp"
+#include "scene_json.hpp"
+
+namespace furniture_fem::detail {
+
+inline constexpr EnumNames<Fidelity, 4> fidelity_names{
+    {{Fidelity::full, "full"}, {Fidelity::coarse, "coarse"}, {Fidelity::rigid, "rigid"}, {Fidelity::automatic, "auto"}}};
+inline constexpr EnumNames<MotionSource, 2> source_names{{{MotionSource::synthetic, "synthetic"}, {MotionSource::file, "file"}}};
+inline constexpr EnumNames<RecordFormat, 4> format_names{{{RecordFormat::at2, "at2"},
+                                                          {RecordFormat::knet, "knet"},
+                                                          {RecordFormat::jma_csv, "jma_csv"},
+                                                          {RecordFormat::columns, "columns"}}};
+inline constexpr EnumNames<MotionDimensions, 2> dimension_names{
+    {{MotionDimensions::one_d, "1d"}, {MotionDimensions::three_d, "3d"}}};
+inline constexpr EnumNames<AccelerationUnits, 3> unit_names{
+    {{AccelerationUnits::g, "g"}, {AccelerationUnits::gal, "gal"}, {AccelerationUnits::m_per_s2, "m/s2"}}};
+inline constexpr EnumNames<ContactLawKind, 5> law_names{{{ContactLawKind::paper, "paper"},
+                                                         {ContactLawKind::paper_anisotropic, "paper_anisotropic"},
+                                                         {ContactLawKind::spring_dashpot, "spring_dashpot"},
+                                                         {ContactLawKind::hunt_crossley, "hunt_crossley"},
+                                                         {ContactLawKind::stick_slip, "stick_slip"}}};
+inline constexpr EnumNames<IntegratorKind, 3> integrator_names{
+    {{IntegratorKind::paper_newmark, "paper_newmark"},
+     {IntegratorKind::average_acceleration, "average_acceleration"},
+     {IntegratorKind::generalized_alpha, "generalized_alpha"}}};
+inline constexpr EnumNames<SolverKind, 2> solver_names{{{SolverKind::cg, "cg"}, {SolverKind::direct, "direct"}}};
+
+// Which contact override a law reads: a value the chosen law ignores is a mistake worth reporting.
+struct ContactField {
+  std::string_view key;
+  std::optional<double> ContactOverrides::*field;
+  double lo, hi;
+  bool lo_exclusive;
+  std::array<bool, 5> used_by;  // paper, paper_anisotropic, spring_dashpot, hunt_crossley, stick_slip
+  bool floor_only;
+};
+inline constexpr std::array<ContactField, 11> contact_fields{{
+    {"alpha_kgf", &ContactOverrides::alpha_kgf, 0.0, 1e6, true, {true, true, false, false, true}, false},
+    {"dc_kgf", &ContactOverrides::dc_kgf, 0.0, 1e6, false, {true, true, false, false, true}, false},
+    {"q", &ContactOverrides::q, 0.0, 10.0, true, {true, true, false, true, true}, false},
+    {"mu", &ContactOverrides::mu, 0.0, 5.0, false, {true, true, true, true, true}, false},
+    {"mu_long", &ContactOverrides::mu_long, 0.0, 5.0, false, {true, true, true, true, true}, true},
+    {"mu_short", &ContactOverrides::mu_short, 0.0, 5.0, false, {true, true, true, true, true}, true},
+    {"stiffness", &ContactOverrides::stiffness, 0.0, 1e12, true, {false, false, true, true, false}, false},
+    {"damping", &ContactOverrides::damping, 0.0, 1e12, false, {false, false, true, false, false}, false},
+    {"restitution", &ContactOverrides::restitution, 0.0, 1.0, false, {false, false, false, true, false}, false},
+    {"mu_static", &ContactOverrides::mu_static, 0.0, 5.0, false, {false, false, false, false, true}, false},
+    {"stick_velocity", &ContactOverrides::stick_velocity, 0.0, 10.0, true, {false, false, false, false, true}, false},
+}};
+
+inline void read_range(const ObjectReader& r, std::string_view key, double lo, double hi, bool lo_exclusive) {
+  if (!r.has(key)) return;
+  const double v = r.raw(key).get<double>();
+  r.require((lo_exclusive ? v > lo : v >= lo) && v <= hi, key,
+            std::string("must lie in ") + (lo_exclusive ? "(" : "[") + fmt(lo) + ", " + fmt(hi) + "]");
+}
+
+inline json overrides_to_json(const ContactOverrides& o) {
+  json j = json::object();
+  for (const auto& f : contact_fields)
+    if (o.*(f.field)) j[std::string(f.key)] = *(o.*(f.field));
+  return j;
+}
+
+}  // namespace furniture_fem::detail

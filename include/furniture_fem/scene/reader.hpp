@@ -1,0 +1,326 @@
+#pragma once
+// furniture_fem/scene/reader.hpp: scene files (docs/scene/scene_file.md) read into a SceneSpec, strictly:
+// an unknown key, a wrong type, an out-of-range value or an unknown name throws InputError naming the
+// file, the key path and the value. Item kinds and their parameters come from item_kind_registry().
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "../core/errors.hpp"
+#include "../furniture/item_kinds.hpp"
+#include "item_parameters.hpp"
+#include "spec.hpp"
+
+#define FURNITURE_FEM_SCENE_INTERNAL
+#include "detail/scene_json.hpp"
+#include "detail/scene_names.hpp"
+#undef FURNITURE_FEM_SCENE_INTERNAL
+
+namespace furniture_fem {
+
+namespace detail {
+
+// A parameter's value against its declared range, the value in the message.
+inline void check_parameter(const ObjectReader& r, const ItemParameter& p) {
+  if (const auto why = p.violation(r.raw(p.key).get<double>())) r.require(false, p.key, *why);
+}
+
+inline ItemParams parse_item_params(const ObjectReader& r, const ItemKindEntry& kind) {
+  const auto accepted = accepted_item_parameters(kind);
+  for (auto it = r.raw_object().begin(); it != r.raw_object().end(); ++it)
+    if (std::find(accepted.begin(), accepted.end(), it.key()) == accepted.end())
+      r.fail(r.path(it.key()), not_a_parameter_message(kind));
+  ItemParams p;
+  for (const auto& c : common_item_parameters) {
+    if (!r.has(c.parameter.key)) continue;
+    p.*(c.field) = r.optional_number(c.parameter.key);
+    check_parameter(r, c.parameter);
+  }
+  for (const auto& q : kind.parameters) {
+    if (!r.has(q.key)) continue;
+    const double value = q.integer ? static_cast<double>(*r.optional_integer(q.key)) : *r.optional_number(q.key);
+    check_parameter(r, q);
+    p.kind_values[std::string(q.key)] = value;
+  }
+  return p;
+}
+
+inline ContactOverrides parse_contact_overrides(const ObjectReader& r, ContactLawKind law, bool is_floor) {
+  ContactOverrides o;
+  std::vector<std::string_view> allowed;
+  for (const auto& f : contact_fields)
+    if (is_floor || !f.floor_only) allowed.push_back(f.key);
+  r.allow_only(allowed, "contact parameter");
+  for (const auto& f : contact_fields) {
+    if (!r.has(f.key)) continue;
+    if (!f.used_by[static_cast<size_t>(law)])
+      r.fail(r.path(f.key), "not used by the contact law \"" + enum_name(law_names, law) + "\"");
+    o.*(f.field) = r.optional_number(f.key);
+    read_range(r, f.key, f.lo, f.hi, f.lo_exclusive);
+  }
+  return o;
+}
+
+inline ItemSpec parse_item(const json& v, const std::string& path, const std::string& source) {
+  ObjectReader r(v, path, source);
+  r.allow_only({"name", "kind", "x", "y", "yaw_deg", "fidelity", "params"});
+  ItemSpec item;
+  const ItemKindRegistry& kinds = item_kind_registry();
+  if (!r.has("kind")) r.fail(r.path("kind"), "required; one of: " + kinds.names());
+  const std::string kind_name = *r.optional_string("kind");
+  const ItemKindEntry* kind = kinds.find(kind_name);
+  if (!kind) r.fail(r.path("kind"), "unknown item kind \"" + kind_name + "\"; expected one of: " + kinds.names());
+  item.kind = kind->kind;
+  item.name = r.string("name", "");
+  if (r.has("name")) {
+    r.require(!item.name.empty(), "name", "must not be empty");
+    r.require(item.name.find_first_of("./") == std::string::npos, "name",
+              "must not contain '.' or '/' (they separate item, body and marker in references)");
+  }
+  item.x = r.number("x", 0);
+  item.y = r.number("y", 0);
+  item.yaw_deg = r.number("yaw_deg", 0);
+  r.in_range("yaw_deg", -360, 360);
+  item.fidelity = r.enumeration("fidelity", fidelity_names, Fidelity::full, "fidelity");
+  if (r.has("params")) item.params = parse_item_params(r.object("params"), *kind);
+  return item;
+}
+
+inline void parse_ground_motion(const ObjectReader& r, GroundMotionSpec& g) {
+  g.source = r.enumeration("source", source_names, MotionSource::synthetic, "ground motion source");
+  const bool synthetic = g.source == MotionSource::synthetic;
+  const std::vector<std::string_view> common{"source", "level", "dimensions", "lowpass_hz", "window"};
+  const std::vector<std::string_view> only_synthetic{"seed", "pga", "duration"};
+  const std::vector<std::string_view> only_file{"format", "files", "units", "dt"};
+  for (auto key : synthetic ? only_file : only_synthetic)
+    if (r.has(key))
+      r.fail(r.path(key), std::string("only used with source \"") + (synthetic ? "file" : "synthetic") + "\"");
+  std::vector<std::string_view> allowed = common;
+  for (auto key : synthetic ? only_synthetic : only_file) allowed.push_back(key);
+  r.allow_only(allowed);
+
+  g.level = r.number("level", g.level);
+  r.non_negative("level");
+  g.dimensions = r.enumeration("dimensions", dimension_names, g.dimensions, "dimensions");
+  g.lowpass_hz = r.number("lowpass_hz", g.lowpass_hz);
+  r.non_negative("lowpass_hz");
+  if (r.has("window")) {
+    const ObjectReader w = r.object("window");
+    w.allow_only({"start", "end"});
+    g.window_start = w.number("start", 0);
+    w.non_negative("start");
+    g.window_end = w.optional_number("end");
+    if (g.window_end) w.require(*g.window_end > g.window_start, "end", "must be later than window.start");
+  }
+  if (synthetic) {
+    const long long seed = r.integer("seed", g.seed);
+    if (r.has("seed")) r.require(seed >= 0 && seed <= 4294967295LL, "seed", "must lie in [0, 4294967295]");
+    g.seed = static_cast<unsigned>(seed);
+    g.pga = r.number("pga", g.pga);
+    r.positive("pga");
+    g.synthetic_duration = r.number("duration", g.synthetic_duration);
+    r.positive("duration");
+    return;
+  }
+  g.format = r.enumeration("format", format_names, g.format, "record format");
+  if (!r.has("files")) r.fail(r.path("files"), "required when source is \"file\" (an object with x, and y, z for 3-D)");
+  const ObjectReader files = r.object("files");
+  files.allow_only({"x", "y", "z"});
+  g.file_x = files.string("x", "");
+  g.file_y = files.string("y", "");
+  g.file_z = files.string("z", "");
+  if (g.file_x.empty()) files.fail(files.path("x"), "required: the record along X (the excitation direction)");
+  if (g.dimensions == MotionDimensions::three_d)
+    for (auto [key, file] : {std::pair{"y", &g.file_y}, std::pair{"z", &g.file_z}})
+      if (file->empty()) files.fail(files.path(key), "required for dimensions \"3d\"");
+  if (r.has("units")) g.units = r.enumeration("units", unit_names, AccelerationUnits::g, "acceleration unit");
+  g.dt = r.optional_number("dt");
+  r.positive("dt");
+}
+
+}  // namespace detail
+
+// Reads a scene from parsed JSON. `source_name` names it in error messages (a file name).
+inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& source_name) {
+  using detail::ObjectReader;
+  const std::string source = source_name;
+  SceneSpec s;
+  s.source = source;
+  const ObjectReader r(j, "", source);
+  r.allow_only({"name", "table", "walls", "obstacles", "items", "ground_motion", "contact", "integrator", "solver",
+                "refresh_every", "duration", "dt", "outputs"});
+  s.name = r.string("name", s.name);
+
+  if (r.has("table")) {
+    const ObjectReader t = r.object("table");
+    t.allow_only({"size_x", "size_y", "floor_z"});
+    s.table.size_x = t.number("size_x", s.table.size_x);
+    s.table.size_y = t.number("size_y", s.table.size_y);
+    s.table.floor_z = t.number("floor_z", s.table.floor_z);
+    t.positive("size_x");
+    t.positive("size_y");
+  }
+
+  s.walls = default_walls(s.table);
+  if (r.has("walls")) {
+    s.walls.clear();
+    r.array("walls", [&](const nlohmann::json& v, const std::string& path) {
+      const ObjectReader w(v, path, source);
+      w.allow_only({"name", "point", "normal", "height", "width"});
+      WallSpec wall;
+      wall.name = w.string("name", "wall_" + std::to_string(s.walls.size() + 1));
+      wall.point = w.vec3("point", wall.point);
+      wall.normal = w.vec3("normal", wall.normal);
+      if (std::abs(wall.normal.z()) > 1e-12 || wall.normal.norm() < 1e-12)
+        w.fail(w.path("normal"), "must be a non-zero horizontal vector (walls are vertical), got [" +
+                                     detail::fmt(wall.normal.x()) + ", " + detail::fmt(wall.normal.y()) + ", " +
+                                     detail::fmt(wall.normal.z()) + "]");
+      wall.normal.normalize();
+      wall.height = w.number("height", wall.height);
+      wall.width = w.number("width", wall.width);
+      w.positive("height");
+      w.positive("width");
+      s.walls.push_back(wall);
+    });
+  }
+
+  r.array("obstacles", [&](const nlohmann::json& v, const std::string& path) {
+    const ObjectReader o(v, path, source);
+    o.allow_only({"name", "file", "position", "yaw_deg", "scale"});
+    ObstacleSpec ob;
+    ob.name = o.string("name", "obstacle_" + std::to_string(s.obstacles.size() + 1));
+    if (!o.has("file")) o.fail(o.path("file"), "required: an STL or OBJ mesh file");
+    ob.file = *o.optional_string("file");
+    const std::string ext = std::filesystem::path(ob.file).extension().string();
+    if (ext != ".stl" && ext != ".STL" && ext != ".obj" && ext != ".OBJ")
+      o.fail(o.path("file"), "expected an .stl or .obj mesh file, got \"" + ob.file + "\"");
+    ob.position = o.vec3("position", ob.position);
+    ob.yaw_deg = o.number("yaw_deg", 0);
+    o.in_range("yaw_deg", -360, 360);
+    ob.scale = o.number("scale", 1);
+    o.positive("scale");
+    s.obstacles.push_back(ob);
+  });
+
+  r.array("items", [&](const nlohmann::json& v, const std::string& path) {
+    s.items.push_back(detail::parse_item(v, path, source));
+  });
+  // Unnamed items take their kind's name, numbered from the second of a kind on ("desk", "desk_2").
+  std::map<std::string, int> seen;
+  for (auto& item : s.items)
+    if (item.name.empty()) {
+      const std::string base = to_string(item.kind);
+      const int n = ++seen[base];
+      item.name = n == 1 ? base : base + "_" + std::to_string(n);
+    }
+
+  if (r.has("ground_motion")) detail::parse_ground_motion(r.object("ground_motion"), s.ground_motion);
+
+  if (r.has("contact")) {
+    const ObjectReader c = r.object("contact");
+    c.allow_only({"law", "velocity_regularisation", "floor", "wall", "item"});
+    s.contact.law = c.enumeration("law", detail::law_names, s.contact.law, "contact law");
+    s.contact.velocity_regularisation = c.number("velocity_regularisation", s.contact.velocity_regularisation);
+    c.positive("velocity_regularisation");
+    if (c.has("floor")) s.contact.floor = detail::parse_contact_overrides(c.object("floor"), s.contact.law, true);
+    if (c.has("wall")) s.contact.wall = detail::parse_contact_overrides(c.object("wall"), s.contact.law, false);
+    if (c.has("item")) s.contact.item = detail::parse_contact_overrides(c.object("item"), s.contact.law, false);
+  }
+
+  if (r.has("integrator")) {
+    const ObjectReader in = r.object("integrator");
+    in.allow_only({"scheme", "rho_inf", "iterate_to_equilibrium"});
+    s.integrator.scheme = in.enumeration("scheme", detail::integrator_names, s.integrator.scheme, "integrator");
+    s.integrator.rho_inf = in.number("rho_inf", s.integrator.rho_inf);
+    in.in_range("rho_inf", 0, 1);
+    s.integrator.iterate_to_equilibrium = in.boolean("iterate_to_equilibrium", s.integrator.iterate_to_equilibrium);
+  }
+  s.solver = r.enumeration("solver", detail::solver_names, s.solver, "solver");
+  s.refresh_every = r.number("refresh_every", s.refresh_every);
+  r.positive("refresh_every");
+  s.duration = r.number("duration", s.duration);
+  r.positive("duration");
+  s.dt = r.number("dt", s.dt);
+  r.positive("dt");
+  if (r.has("dt")) r.require(s.dt <= s.duration, "dt", "must not exceed duration (" + detail::fmt(s.duration) + " s)");
+
+  if (r.has("outputs")) {
+    const ObjectReader o = r.object("outputs");
+    o.allow_only({"folder", "markers", "sectional_forces", "vtu_every", "figures"});
+    s.outputs.folder = o.string("folder", s.outputs.folder);
+    o.require(!s.outputs.folder.empty(), "folder", "must not be empty");
+    o.array("markers", [&](const nlohmann::json& v, const std::string& path) {
+      MarkerRequest m;
+      if (v.is_string()) {
+        // "item.marker": item names hold no '.', so the first '.' separates them.
+        const std::string text = v.get<std::string>();
+        const auto dot = text.find('.');
+        if (dot == std::string::npos || dot == 0 || dot + 1 == text.size())
+          o.fail(path, "expected \"item.marker\" (e.g. \"desk.top_front_centre\"), got \"" + text + "\"");
+        m.name = text;
+        m.item = text.substr(0, dot);
+        m.marker = text.substr(dot + 1);
+      } else {
+        const ObjectReader mr(v, path, source);
+        mr.allow_only({"name", "item", "marker", "point"});
+        for (auto key : {"item", "name"})
+          if (!mr.has(key)) mr.fail(mr.path(key), "required");
+        m.name = *mr.optional_string("name");
+        m.item = *mr.optional_string("item");
+        if (mr.has("marker") == mr.has("point"))
+          mr.fail(mr.path("point"), "give exactly one of \"marker\" (a builder marker) and \"point\" (item frame, m)");
+        m.marker = mr.string("marker", "");
+        m.point = mr.optional_vec3("point");
+      }
+      s.outputs.markers.push_back(m);
+    });
+    o.array("sectional_forces", [&](const nlohmann::json& v, const std::string& path) {
+      const ObjectReader f(v, path, source);
+      f.allow_only({"item", "member", "element"});
+      for (auto key : {"item", "member"})
+        if (!f.has(key)) f.fail(f.path(key), "required");
+      SectionalForceRequest req;
+      req.item = *f.optional_string("item");
+      req.member = *f.optional_string("member");
+      const long long e = f.integer("element", 0);
+      if (f.has("element")) f.require(e >= 0 && e < 100000, "element", "must lie in [0, 100000)");
+      req.element = static_cast<int>(e);
+      s.outputs.sectional_forces.push_back(req);
+    });
+    const long long every = o.integer("vtu_every", s.outputs.vtu_every);
+    if (o.has("vtu_every")) o.require(every >= 0 && every <= 100000000, "vtu_every", "must lie in [0, 1e8] (0: no VTU)");
+    s.outputs.vtu_every = static_cast<int>(every);
+    s.outputs.figures = o.boolean("figures", s.outputs.figures);
+  }
+  return s;
+}
+
+// Reads a scene file. JSON syntax errors report the line; relative paths inside the file are taken
+// relative to the file's folder (SceneSpec::resolve).
+inline SceneSpec parse_scene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "", "cannot open the scene file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    const auto upto = text.begin() + static_cast<std::ptrdiff_t>(std::min(text.size(), static_cast<size_t>(e.byte)));
+    const long line = 1 + std::count(text.begin(), upto, '\n');
+    throw InputError(path, line, "", std::string("not valid JSON: ") + e.what());
+  }
+  SceneSpec s = parse_scene_json(j, path);
+  s.base_dir = std::filesystem::path(path).parent_path().string();
+  return s;
+}
+
+}  // namespace furniture_fem

@@ -1,0 +1,179 @@
+#pragma once
+// furniture_fem/scene/spec.hpp: what a run simulates, as plain data: the shake table and its walls, mesh
+// obstacles, the furniture items and where they stand, the ground motion, the contact law, the time
+// integration, and what to write out. Read from JSON by scene/reader.hpp (docs/scene/scene_file.md).
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "../core/model.hpp"
+#include "../furniture/furniture.hpp"
+
+namespace furniture_fem {
+
+// ---------------------------------------------------------------------------------------------------
+// The scene description
+// ---------------------------------------------------------------------------------------------------
+
+// The shake table: a size_x x size_y rectangle centred on the origin, its floor at z = floor_z.
+struct TableSpec {
+  double size_x = 4.0, size_y = 4.0;  // m (the paper's table: 4 m x 4 m)
+  double floor_z = 0.0;
+};
+
+// A rigid vertical wall: the plane through `point` with horizontal unit `normal` pointing into the
+// room, `height` above the floor and `width` along the wall, centred on `point`.
+struct WallSpec {
+  std::string name;
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitX();
+  double height = 2.5;
+  double width = 4.0;
+};
+
+// The paper's two walls, orthogonal to the excitation (X), facing each other at the table's edges.
+inline std::vector<WallSpec> default_walls(const TableSpec& t = {}) {
+  return {WallSpec{"wall_minus_x", Vec3(-0.5 * t.size_x, 0, t.floor_z), Vec3::UnitX(), 2.5, t.size_y},
+          WallSpec{"wall_plus_x", Vec3(0.5 * t.size_x, 0, t.floor_z), Vec3(-1, 0, 0), 2.5, t.size_y}};
+}
+
+// A rigid obstacle given by a triangle mesh file (STL or OBJ), placed like an item.
+struct ObstacleSpec {
+  std::string name;
+  std::string file;
+  Vec3 position = Vec3::Zero();
+  double yaw_deg = 0;
+  double scale = 1;
+};
+
+// Per-item parameters (docs/scene/scene_file.md, table made by item_parameter_tables()). Those every kind
+// takes (mesh, mass, contact) are fields; a kind's own (a bookshelf's width, its shelves...) are
+// declared by the kind (furniture/item_kinds.hpp) and kept by key, only those the file gives.
+struct ItemParams {
+  std::optional<double> panel_spacing, grid_scale, element_length;  // m, -, m
+  std::optional<double> mass_kg, cog_h, cog_d1;                      // kg, m, m; single-body kinds only
+  std::optional<double> alpha_kgf, dc_kgf, mu_floor_long, mu_floor_short, mu_wall, mu_item;  // ItemContact
+  std::map<std::string, double> kind_values;                         // the kind's own parameters
+};
+
+struct ItemSpec {
+  std::string name;  // unique; marker and output references use it
+  ItemKind kind = ItemKind::tall_cabinet;
+  double x = 0, y = 0;  // footprint centre on the table (m)
+  double yaw_deg = 0;   // counter-clockwise seen from above; 0: width along X, front towards -Y
+  Fidelity fidelity = Fidelity::full;
+  ItemParams params;
+};
+
+enum class MotionSource { synthetic, file };
+enum class RecordFormat { at2, knet, jma_csv, columns };
+enum class MotionDimensions { one_d, three_d };
+enum class AccelerationUnits { g, gal, m_per_s2 };
+
+struct GroundMotionSpec {
+  MotionSource source = MotionSource::synthetic;
+  // synthetic: a random motion of peak ground acceleration `pga` (m/s^2) lasting `synthetic_duration`
+  unsigned seed = 1;
+  double pga = 3.0;
+  double synthetic_duration = 10.0;
+  // file: one record per axis (x along the excitation; y, z needed for 3-D)
+  RecordFormat format = RecordFormat::at2;
+  std::string file_x, file_y, file_z;
+  std::optional<AccelerationUnits> units;  // none: the format's own (AT2: g, K-NET and JMA: gal)
+  std::optional<double> dt;                // s, for "columns" files without a time column
+  // both
+  double level = 1.0;                      // scale of the record (0.5 and 1.0 in the paper)
+  MotionDimensions dimensions = MotionDimensions::one_d;
+  double lowpass_hz = 10.0;                // 0: no filter
+  double window_start = 0.0;               // s of record time where the run starts
+  std::optional<double> window_end;        // none: the record's end
+};
+
+enum class ContactLawKind { paper, paper_anisotropic, spring_dashpot, hunt_crossley, stick_slip };
+
+// Overrides of the contact parameters for one kind of pair (floor, wall or item-item). Unset values
+// come from each item's ItemContact (Table 4 or the 0.8 rule).
+struct ContactOverrides {
+  std::optional<double> alpha_kgf, dc_kgf, q, mu, mu_long, mu_short;  // paper laws
+  std::optional<double> stiffness, damping, restitution;             // N/m, N s/m, -
+  std::optional<double> mu_static, stick_velocity;                   // stick-slip: -, m/s
+};
+
+struct ContactSpec {
+  ContactLawKind law = ContactLawKind::paper;
+  double velocity_regularisation = 1e-3;  // m/s: v/|v| is smoothed below this speed
+  ContactOverrides floor, wall, item;
+};
+
+enum class IntegratorKind { paper_newmark, average_acceleration, generalized_alpha };
+struct IntegratorSpec {
+  IntegratorKind scheme = IntegratorKind::paper_newmark;
+  double rho_inf = 0.5;                 // spectral radius at infinity (generalized-alpha)
+  bool iterate_to_equilibrium = false;  // false: carry the unbalanced force over, as the paper's code
+};
+
+enum class SolverKind { cg, direct };
+
+// A displacement output point: a builder's marker ("desk.top_front_centre") or, with `point` set, the
+// node nearest to a point of the item frame.
+struct MarkerRequest {
+  std::string name;
+  std::string item;    // the body's name: an item name, or "<item>/upper" and "<item>/lower"
+  std::string marker;  // builder marker name (when point is not set)
+  std::optional<Vec3> point;
+};
+
+// Sectional forces of one element: item (body name), member name (docs/furniture/furniture.md), element index
+// within the member.
+struct SectionalForceRequest {
+  std::string item;
+  std::string member;
+  int element = 0;
+};
+
+struct OutputSpec {
+  std::string folder = "out";  // relative to the run's working folder
+  std::vector<MarkerRequest> markers;
+  std::vector<SectionalForceRequest> sectional_forces;
+  int vtu_every = 0;   // write VTU every N steps; 0: none
+  bool figures = true;
+};
+
+struct SceneSpec {
+  std::string name = "scene";
+  TableSpec table;
+  std::vector<WallSpec> walls = default_walls();
+  std::vector<ObstacleSpec> obstacles;
+  std::vector<ItemSpec> items;
+  GroundMotionSpec ground_motion;
+  ContactSpec contact;
+  IntegratorSpec integrator;
+  SolverKind solver = SolverKind::direct;
+  // Refactorise each body's effective matrix every `refresh_every` s of simulated time (reused in
+  // between with the body's rigid turn taken out). 0.1 s (100 steps at dt = 1 ms) is on the
+  // speed-against-error front (docs/performance.md section 4): every 20 steps or every step costs 1.3
+  // and 8 times as much for the same error. In time, not steps: at dt = 5 ms, 100 steps (0.5 s) lost
+  // accuracy that every 0.1 s keeps.
+  double refresh_every = 0.1;
+  int refresh_interval_steps() const {
+    return static_cast<int>(std::clamp(std::lround(refresh_every / dt), 1L, 1000000000L));
+  }
+  double duration = 10.0;  // s
+  double dt = 1e-3;        // s (the paper's 1 ms)
+  OutputSpec outputs;
+  // Not part of the file: where it came from (error messages) and the folder relative paths are read from.
+  std::string source = "<scene>";
+  std::string base_dir;
+
+  // A path from the scene file, made usable: relative paths are relative to the scene file's folder.
+  std::string resolve(const std::string& path) const {
+    if (path.empty() || base_dir.empty() || std::filesystem::path(path).is_absolute()) return path;
+    return (std::filesystem::path(base_dir) / path).lexically_normal().string();
+  }
+};
+
+}  // namespace furniture_fem

@@ -1,0 +1,178 @@
+#pragma once
+// furniture_fem/scene/validation.hpp: validate(), what reading a scene alone cannot check, before a run.
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <set>
+#include <string>
+
+#include "../core/errors.hpp"
+#include "../core/model.hpp"
+#include "build.hpp"
+#include "item_parameters.hpp"
+#include "spec.hpp"
+
+#define FURNITURE_FEM_SCENE_INTERNAL
+#include "detail/scene_names.hpp"
+#undef FURNITURE_FEM_SCENE_INTERNAL
+
+namespace furniture_fem {
+
+namespace detail {
+
+// Footprint of an item on the table: centre, unit axes along its width and depth, half extents.
+struct Footprint {
+  Eigen::Vector2d centre, u, v;
+  double half_w = 0, half_d = 0;
+  std::array<Eigen::Vector2d, 4> corners() const {
+    return {centre - half_w * u - half_d * v, centre + half_w * u - half_d * v, centre + half_w * u + half_d * v,
+            centre - half_w * u + half_d * v};
+  }
+};
+
+inline Footprint footprint(const ItemSpec& item) {
+  const double yaw = item.yaw_deg * std::numbers::pi / 180.0;
+  const Vec3 size = item_size(item);
+  return {Eigen::Vector2d(item.x, item.y), Eigen::Vector2d(std::cos(yaw), std::sin(yaw)),
+          Eigen::Vector2d(-std::sin(yaw), std::cos(yaw)), 0.5 * size.x(), 0.5 * size.y()};
+}
+
+// Depth of overlap of two footprints (separating axes); <= 0 when they are apart or only touch.
+inline double overlap_depth(const Footprint& a, const Footprint& b) {
+  double depth = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector2d& axis : {a.u, a.v, b.u, b.v}) {
+    const double ra = a.half_w * std::abs(a.u.dot(axis)) + a.half_d * std::abs(a.v.dot(axis));
+    const double rb = b.half_w * std::abs(b.u.dot(axis)) + b.half_d * std::abs(b.v.dot(axis));
+    depth = std::min(depth, ra + rb - std::abs((b.centre - a.centre).dot(axis)));
+  }
+  return depth;
+}
+
+}  // namespace detail
+
+// Checks what parsing alone cannot: item names, items inside the table, clear of the walls and of
+// each other; record and mesh files present; markers and sectional-force elements that exist on the
+// built items; and that every item can be built (mass and centre-of-gravity targets reachable).
+// Throws InputError naming the key path and the item.
+inline void validate(const SceneSpec& s) {
+  const auto fail = [&](const std::string& path, const std::string& message) {
+    throw InputError(s.source, 0, path, message);
+  };
+  const auto item_label = [&](size_t i) { return "item '" + s.items[i].name + "'"; };
+  if (!(s.dt > 0) || !(s.duration > 0) || s.dt > s.duration)
+    fail("dt", "must be positive and not exceed duration (dt = " + detail::fmt(s.dt) +
+                   " s, duration = " + detail::fmt(s.duration) + " s)");
+  if (s.ground_motion.level < 0) fail("ground_motion.level", "must not be negative (got " + detail::fmt(s.ground_motion.level) + ")");
+  if (s.items.empty()) fail("items", "a scene needs at least one item");
+
+  std::set<std::string> names;
+  for (size_t i = 0; i < s.items.size(); ++i) {
+    const std::string path = "items[" + std::to_string(i) + "]";
+    const auto& item = s.items[i];
+    if (item.name.empty() || item.name.find_first_of("./") != std::string::npos)
+      fail(path + ".name", "must be non-empty and hold no '.' or '/' (got \"" + item.name + "\")");
+    if (!names.insert(item.name).second) fail(path + ".name", "duplicate item name \"" + item.name + "\"");
+    const ItemKindEntry* kind = item_kind_registry().find(item.kind.name());
+    if (!kind)
+      fail(path + ".kind", "unknown item kind \"" + to_string(item.kind) + "\"; registered kinds: " +
+                               item_kind_registry().names());
+    for (const auto& [key, value] : item.params.kind_values) {
+      const ItemParameter* declared = kind->parameter(key);
+      if (!declared) fail(path + ".params." + key, not_a_parameter_message(*kind));
+      if (const auto why = declared->violation(value))
+        fail(path + ".params." + key, *why + " (got " + detail::fmt(value) + ")");
+    }
+    const Vec3 size = item_size(item);
+    if (item.params.cog_h && *item.params.cog_h >= size.z())
+      fail(path + ".params.cog_h", "must lie below the item's height " + detail::fmt(size.z()) + " m (got " +
+                                       detail::fmt(*item.params.cog_h) + ")");
+    if (item.params.cog_d1 && *item.params.cog_d1 >= size.y())
+      fail(path + ".params.cog_d1", "must lie within the item's depth " + detail::fmt(size.y()) + " m (got " +
+                                        detail::fmt(*item.params.cog_d1) + ")");
+    const auto fp = detail::footprint(item);
+    const double hx = 0.5 * s.table.size_x, hy = 0.5 * s.table.size_y, tol = 1e-9;
+    for (const auto& c : fp.corners())
+      if (std::abs(c.x()) > hx + tol || std::abs(c.y()) > hy + tol)
+        fail(path, item_label(i) + " lies partly outside the " + detail::fmt(s.table.size_x) + " m x " +
+                       detail::fmt(s.table.size_y) + " m table: its footprint corner (" + detail::fmt(c.x()) + ", " +
+                       detail::fmt(c.y()) + ") m is off the table");
+    for (const auto& wall : s.walls) {
+      const Eigen::Vector2d n = wall.normal.head<2>().normalized(), p = wall.point.head<2>();
+      const Eigen::Vector2d t(-n.y(), n.x());
+      for (const auto& c : fp.corners()) {
+        const double inside = (c - p).dot(n), along = (c - p).dot(t);
+        if (inside < -tol && std::abs(along) <= 0.5 * wall.width + tol)
+          fail(path, item_label(i) + " passes through wall '" + wall.name + "' by " + detail::fmt(-inside) + " m");
+      }
+    }
+    for (size_t k = 0; k < i; ++k) {
+      const double depth = detail::overlap_depth(detail::footprint(s.items[k]), fp);
+      if (depth > 1e-6)
+        fail(path, item_label(i) + " and " + item_label(k) + " (items[" + std::to_string(k) +
+                       "]) overlap: their footprints intersect by " + detail::fmt(depth) + " m");
+    }
+  }
+
+  const auto& g = s.ground_motion;
+  if (g.source == MotionSource::file) {
+    for (auto [key, file] : {std::pair{"x", &g.file_x}, std::pair{"y", &g.file_y}, std::pair{"z", &g.file_z}}) {
+      if (file->empty()) {
+        if (std::string(key) == "x" || g.dimensions == MotionDimensions::three_d)
+          fail(std::string("ground_motion.files.") + key, "required (dimensions \"" +
+                                                              detail::enum_name(detail::dimension_names, g.dimensions) + "\")");
+        continue;
+      }
+      if (!std::filesystem::is_regular_file(s.resolve(*file)))
+        fail(std::string("ground_motion.files.") + key, "record file not found: \"" + s.resolve(*file) + "\"");
+    }
+  }
+  if (g.window_end && *g.window_end <= g.window_start)
+    fail("ground_motion.window.end", "must be later than window.start (" + detail::fmt(g.window_start) + " s)");
+  for (size_t i = 0; i < s.obstacles.size(); ++i)
+    if (!std::filesystem::is_regular_file(s.resolve(s.obstacles[i].file)))
+      fail("obstacles[" + std::to_string(i) + "].file", "mesh file not found: \"" + s.resolve(s.obstacles[i].file) + "\"");
+
+  // Build every item once: it proves the calibration targets reachable and gives markers and members.
+  Model scratch;
+  std::map<std::string, ItemInfo> bodies;
+  for (size_t i = 0; i < s.items.size(); ++i) {
+    try {
+      for (auto& info : build_item(s, i, scratch)) bodies.emplace(info.name, std::move(info));
+    } catch (const ModelError& e) {
+      fail("items[" + std::to_string(i) + "]", item_label(i) + " cannot be built: " + e.what());
+    }
+  }
+  const auto body_names = [&] {
+    std::string list;
+    for (const auto& [name, info] : bodies) list += (list.empty() ? "" : ", ") + name;
+    return list;
+  };
+  for (size_t k = 0; k < s.outputs.markers.size(); ++k) {
+    const auto& m = s.outputs.markers[k];
+    const std::string path = "outputs.markers[" + std::to_string(k) + "]";
+    const auto it = bodies.find(m.item);
+    if (it == bodies.end())
+      fail(path, "marker \"" + m.name + "\" is on no item: \"" + m.item + "\" is not one of: " + body_names());
+    if (!m.point && !it->second.marker(m.marker)) {
+      std::string list;
+      for (const auto& mk : it->second.markers) list += (list.empty() ? "" : ", ") + mk.name;
+      fail(path, "item \"" + m.item + "\" has no marker \"" + m.marker + "\"; its markers: " + list);
+    }
+  }
+  for (size_t k = 0; k < s.outputs.sectional_forces.size(); ++k) {
+    const auto& f = s.outputs.sectional_forces[k];
+    const std::string path = "outputs.sectional_forces[" + std::to_string(k) + "]";
+    const auto it = bodies.find(f.item);
+    if (it == bodies.end()) fail(path + ".item", "\"" + f.item + "\" is not one of: " + body_names());
+    const int member = find_member(scratch, it->second.body, f.member);
+    if (member < 0) fail(path + ".member", "item \"" + f.item + "\" has no member \"" + f.member + "\"");
+    if (f.element >= scratch.member(member).element_count)
+      fail(path + ".element", "member \"" + f.member + "\" has " + std::to_string(scratch.member(member).element_count) +
+                                  " elements (got index " + std::to_string(f.element) + ")");
+  }
+}
+
+}  // namespace furniture_fem

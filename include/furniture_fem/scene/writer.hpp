@@ -1,0 +1,127 @@
+#pragma once
+// furniture_fem/scene/writer.hpp: a SceneSpec as JSON, every value written out, so that reading it back
+// (scene/reader.hpp) gives the same scene and writing that gives the same JSON.
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <string>
+
+#include "../core/errors.hpp"
+#include "../furniture/item_kinds.hpp"
+#include "item_parameters.hpp"
+#include "spec.hpp"
+
+#define FURNITURE_FEM_SCENE_INTERNAL
+#include "detail/scene_json.hpp"
+#include "detail/scene_names.hpp"
+#undef FURNITURE_FEM_SCENE_INTERNAL
+
+namespace furniture_fem {
+
+// The scene as JSON, every value written out: parse_scene_json(to_json(s)) gives s back, and
+// to_json of that gives the same JSON.
+inline nlohmann::json to_json(const SceneSpec& s) {
+  using nlohmann::json;
+  using detail::enum_name;
+  json j;
+  j["name"] = s.name;
+  j["table"] = {{"size_x", s.table.size_x}, {"size_y", s.table.size_y}, {"floor_z", s.table.floor_z}};
+  j["walls"] = json::array();
+  for (const auto& w : s.walls)
+    j["walls"].push_back({{"name", w.name},
+                          {"point", detail::to_json_vec3(w.point)},
+                          {"normal", detail::to_json_vec3(w.normal)},
+                          {"height", w.height},
+                          {"width", w.width}});
+  j["obstacles"] = json::array();
+  for (const auto& o : s.obstacles)
+    j["obstacles"].push_back({{"name", o.name},
+                              {"file", o.file},
+                              {"position", detail::to_json_vec3(o.position)},
+                              {"yaw_deg", o.yaw_deg},
+                              {"scale", o.scale}});
+  j["items"] = json::array();
+  for (const auto& it : s.items) {
+    json item = {{"name", it.name},
+                 {"kind", to_string(it.kind)},
+                 {"x", it.x},
+                 {"y", it.y},
+                 {"yaw_deg", it.yaw_deg},
+                 {"fidelity", to_string(it.fidelity)}};
+    json params = json::object();
+    for (const auto& c : common_item_parameters)
+      if (it.params.*(c.field)) params[std::string(c.parameter.key)] = *(it.params.*(c.field));
+    const ItemKindEntry* kind = item_kind_registry().find(it.kind.name());
+    for (const auto& [key, value] : it.params.kind_values) {
+      const ItemParameter* declared = kind ? kind->parameter(key) : nullptr;
+      if (declared && declared->integer)
+        params[key] = static_cast<long long>(value);
+      else
+        params[key] = value;
+    }
+    if (!params.empty()) item["params"] = params;
+    j["items"].push_back(item);
+  }
+  const auto& g = s.ground_motion;
+  json gm = {{"source", enum_name(detail::source_names, g.source)},
+             {"level", g.level},
+             {"dimensions", enum_name(detail::dimension_names, g.dimensions)},
+             {"lowpass_hz", g.lowpass_hz}};
+  gm["window"] = {{"start", g.window_start}};
+  if (g.window_end) gm["window"]["end"] = *g.window_end;
+  if (g.source == MotionSource::synthetic) {
+    gm["seed"] = g.seed;
+    gm["pga"] = g.pga;
+    gm["duration"] = g.synthetic_duration;
+  } else {
+    gm["format"] = enum_name(detail::format_names, g.format);
+    gm["files"] = {{"x", g.file_x}};
+    if (!g.file_y.empty()) gm["files"]["y"] = g.file_y;
+    if (!g.file_z.empty()) gm["files"]["z"] = g.file_z;
+    if (g.units) gm["units"] = enum_name(detail::unit_names, *g.units);
+    if (g.dt) gm["dt"] = *g.dt;
+  }
+  j["ground_motion"] = gm;
+  json contact = {{"law", enum_name(detail::law_names, s.contact.law)},
+                  {"velocity_regularisation", s.contact.velocity_regularisation}};
+  for (auto [key, o] : {std::pair{"floor", &s.contact.floor}, std::pair{"wall", &s.contact.wall},
+                        std::pair{"item", &s.contact.item}}) {
+    const json ov = detail::overrides_to_json(*o);
+    if (!ov.empty()) contact[key] = ov;
+  }
+  j["contact"] = contact;
+  j["integrator"] = {{"scheme", enum_name(detail::integrator_names, s.integrator.scheme)},
+                     {"rho_inf", s.integrator.rho_inf},
+                     {"iterate_to_equilibrium", s.integrator.iterate_to_equilibrium}};
+  j["solver"] = enum_name(detail::solver_names, s.solver);
+  j["refresh_every"] = s.refresh_every;
+  j["duration"] = s.duration;
+  j["dt"] = s.dt;
+  json markers = json::array();
+  for (const auto& m : s.outputs.markers) {
+    if (m.point)
+      markers.push_back({{"name", m.name}, {"item", m.item}, {"point", detail::to_json_vec3(*m.point)}});
+    else if (m.name == m.item + "." + m.marker)
+      markers.push_back(m.name);
+    else
+      markers.push_back({{"name", m.name}, {"item", m.item}, {"marker", m.marker}});
+  }
+  json forces = json::array();
+  for (const auto& f : s.outputs.sectional_forces)
+    forces.push_back({{"item", f.item}, {"member", f.member}, {"element", f.element}});
+  j["outputs"] = {{"folder", s.outputs.folder},
+                  {"markers", markers},
+                  {"sectional_forces", forces},
+                  {"vtu_every", s.outputs.vtu_every},
+                  {"figures", s.outputs.figures}};
+  return j;
+}
+
+// Writes the scene as an indented JSON file.
+inline void write_scene(const SceneSpec& s, const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw InputError(path, 0, "", "cannot write the scene file");
+  out << to_json(s).dump(2) << '\n';
+}
+
+}  // namespace furniture_fem
