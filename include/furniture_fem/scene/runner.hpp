@@ -87,11 +87,20 @@ inline RunSummary run_observed(const SceneSpec& spec, const RunOptions& opt, con
                                const std::vector<RunObserver*>& extra, std::chrono::steady_clock::time_point t_start) {
   SteppedSimulation& sim = scene.sim;
   const ResolvedOutputs requests = resolve_output_requests(spec, scene.model, scene.items);
-  RunView run{spec, scene.model, scene.items, scene.motion, scene.rigid_bodies, requests, sim, opt};
-  run.out_dir = opt.write_files ? (opt.out_dir.empty() ? spec.outputs.folder : opt.out_dir) : std::string();
-  run.t_end = opt.duration.value_or(spec.duration);
-  run.row_interval_steps = row_interval_steps(opt, spec.dt);
-  run.settle_from = run.t_end - 0.5;
+  const double t_end = opt.duration.value_or(spec.duration);
+  RunView run{spec,
+              scene.model,
+              scene.items,
+              scene.motion,
+              scene.rigid_bodies,
+              requests,
+              sim,
+              opt,
+              opt.write_files ? (opt.out_dir.empty() ? spec.outputs.folder : opt.out_dir) : std::string(),
+              t_end,
+              row_interval_steps(opt, spec.dt),
+              t_end - 0.5,
+              sim.energy()};
   if (!run.out_dir.empty()) std::filesystem::create_directories(run.out_dir);
   const ContactStepEstimate estimate =
       contact_step_estimate(sim, scene.model, scene.items, scene_body_contacts(spec, scene.model, scene.items));
@@ -107,7 +116,6 @@ inline RunSummary run_observed(const SceneSpec& spec, const RunOptions& opt, con
   for (const auto& o : standard) observers.push_back(o.get());
   observers.insert(observers.end(), extra.begin(), extra.end());
 
-  run.row_energy = sim.energy();
   for (RunObserver* o : observers) o->begin(run);
   try {
     while (sim.time() < run.t_end - 0.5 * spec.dt) {
