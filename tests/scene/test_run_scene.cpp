@@ -2,19 +2,22 @@
 // parses; the paper's configuration 2 runs a second of synthetic motion with a small energy-ledger
 // imbalance; broken scene files fail before the run starts, naming the key; a stop request ends the
 // run with readable outputs; and the final-state classification tells a sliding item from a standing
-// one. No test reads ../shared: motions are synthetic or written here.
+// one. A run that writes no files returns the same outcome to the bit, and extra observers see every step;
+// output_interval is a time. No test reads ../shared: motions are synthetic or written here.
 #include <catch2/catch.hpp>
 
 #include <furniture_fem/scene/scene_runner.hpp>
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <numbers>
 #include <regex>
 #include <set>
@@ -613,5 +616,120 @@ TEST_CASE("a completed run that lost too much energy carries a warning naming th
     CHECK(energy_loss_warning(E, 5e-3, 0.0, est).empty());
     E.gravity_potential = 140;  // 40 J made: the creation check's business, not this one's
     CHECK(energy_loss_warning(E, 5e-3, 0.15, est).empty());
+  }
+}
+
+namespace {
+
+// An observer that counts its calls and the history rows, and checks what the runner promises it.
+struct CallCounter : RunObserver {
+  int begins = 0, ends = 0, rows = 0;
+  long steps = 0;
+  std::size_t items_at_end = 0;
+  void begin(const RunView& run) override {
+    ++begins;
+    CHECK(run.sim.steps() == 0);
+    CHECK(run.row_due());
+    ++rows;
+  }
+  void after_step(const RunView& run, const StepInfo&) override {
+    ++steps;
+    CHECK(run.sim.steps() == steps);
+    rows += run.row_due();
+  }
+  void end(const RunView&, RunSummary& summary) override {
+    ++ends;
+    items_at_end = summary.items.size();  // the standard observers before it filled the final states
+  }
+};
+
+std::uint64_t bits(double v) { return std::bit_cast<std::uint64_t>(v); }
+
+// Every number of two summaries equal to the bit (wall time and folder aside).
+void check_same_outcome(const RunSummary& a, const RunSummary& b) {
+  CHECK(a.status == b.status);
+  CHECK(a.diagnosis == b.diagnosis);
+  CHECK(bits(a.t_end) == bits(b.t_end));
+  CHECK(bits(a.duration) == bits(b.duration));
+  CHECK(a.steps == b.steps);
+  CHECK(bits(a.energy_imbalance) == bits(b.energy_imbalance));
+  CHECK(bits(a.max_energy_imbalance) == bits(b.max_energy_imbalance));
+  CHECK(a.factorizations == b.factorizations);
+  CHECK((a.elements == b.elements && a.nodes == b.nodes && a.bodies == b.bodies));
+  REQUIRE(a.items.size() == b.items.size());
+  for (std::size_t i = 0; i < a.items.size(); ++i) {
+    const ItemFinalState &x = a.items[i], &y = b.items[i];
+    INFO(x.name);
+    CHECK((x.name == y.name && x.state == y.state && x.resting_on == y.resting_on));
+    const std::pair<double, double> values[] = {
+        {x.slide, y.slide}, {x.tilt_deg, y.tilt_deg}, {x.max_tilt_deg, y.max_tilt_deg}, {x.lift, y.lift}};
+    for (const auto& [u, v] : values) CHECK(bits(u) == bits(v));
+    for (int c = 0; c < 3; ++c) CHECK(bits(x.cog_displacement[c]) == bits(y.cog_displacement[c]));
+  }
+  REQUIRE(a.section_peaks.size() == b.section_peaks.size());
+  for (std::size_t i = 0; i < a.section_peaks.size(); ++i) {
+    const SectionForcePeak &p = a.section_peaks[i], &q = b.section_peaks[i];
+    CHECK(p.section == q.section);
+    for (int c = 0; c < 6; ++c) {
+      CHECK(bits(p.min[c]) == bits(q.min[c]));
+      CHECK(bits(p.max[c]) == bits(q.max[c]));
+      CHECK(bits(p.t_min[c]) == bits(q.t_min[c]));
+      CHECK(bits(p.t_max[c]) == bits(q.t_max[c]));
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("a run that writes no files returns the same outcome, to the bit, as one that writes them",
+          "[runner][observers]") {
+  const std::string folder = fresh_dir("outcome_files");
+  const SceneSpec spec = parse_scene_json(small_scene_json(folder), "outcome");
+  CallCounter with_files_calls, without_files_calls;
+  const RunSummary with_files = run_scene(spec, quiet(""), {&with_files_calls});
+  fs::remove_all(folder);
+  RunOptions o = quiet("");
+  o.write_files = false;
+  const RunSummary without_files = run_scene(spec, o, {&without_files_calls});
+  CHECK_FALSE(fs::exists(folder));  // not even the folder
+  CHECK(without_files.out_dir.empty());
+  CHECK(with_files.out_dir == folder);
+  REQUIRE(with_files.status == "completed");
+  check_same_outcome(with_files, without_files);
+  // The final states and peaks are those summary.json holds.
+  REQUIRE(without_files.section_peaks.size() == 1);
+  CHECK(without_files.section_peaks[0].section == "office_chair:column:0#0");
+  for (const CallCounter* c : {&with_files_calls, &without_files_calls}) {
+    CHECK(c->begins == 1);
+    CHECK(c->ends == 1);
+    CHECK(c->steps == 300);
+    CHECK(c->rows == 31);  // t = 0, 0.01, ..., 0.3 s
+    CHECK(c->items_at_end == 2);
+  }
+}
+
+TEST_CASE("RunOptions::output_interval is a time, rounded to whole steps", "[runner][observers]") {
+  const std::string out = fresh_dir("output_interval");
+  json j = small_scene_json(out);
+  j["outputs"]["figures"] = false;
+  j["outputs"]["vtu_every"] = 0;
+  const SceneSpec spec = parse_scene_json(j, "output_interval");
+  SECTION("0.05 s at dt = 1 ms: a row every 50 steps") {
+    RunOptions o = quiet(out);
+    o.output_interval = 0.05;
+    CallCounter calls;
+    REQUIRE(run_scene(spec, o, {&calls}).status == "completed");
+    const CsvTable m = read_csv(out + "/markers.csv");
+    REQUIRE(m.rows() == 7);
+    CHECK(m.column("t")[1] == Approx(0.05).margin(1e-12));
+    CHECK(calls.rows == 7);
+  }
+  SECTION("zero, negative or not a number: an InputError naming it, before the run") {
+    for (double bad : {0.0, -0.01, std::numeric_limits<double>::quiet_NaN()}) {
+      RunOptions o = quiet(out + "_bad");
+      o.output_interval = bad;
+      CHECK_THROWS_WITH(run_scene(spec, o), Catch::Contains("output_interval"));
+      CHECK_FALSE(fs::exists(out + "_bad"));
+    }
   }
 }

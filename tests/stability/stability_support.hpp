@@ -191,7 +191,7 @@ inline RunOptions quiet(const std::string& case_name) {
   o.out_dir = fresh_dir(case_name);
   o.progress = false;
   o.figures = false;
-  o.output_every = 10;
+  o.output_interval = 0.01;  // s: rows (and energy checks) every 10 ms of simulated time
   return o;
 }
 

@@ -1,0 +1,219 @@
+#pragma once
+// furniture_fem/scene/observer.hpp: what a run is asked to do and what it reports, and the interface
+// of the observers that watch it (docs/io/output.md, "Observers").
+//
+//   RunOptions       how to run a scene (folder, duration, history interval, stop flag, trust limits)
+//   RunSummary       how it went: status, times, counts, energy ledger, final states, section peaks
+//   SimulationView   a read-only, type-erased view of the stepping simulation
+//   RunView          what every observer receives: the scene, the model, the view, the options
+//   RunObserver      begin / after_step / end: the one interface of every output
+//
+// Nothing here depends on the contact law or the linear solver: observers are compiled once, and only
+// the stepping is instantiated per law and solver (runner.hpp).
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "../contact/room_contact.hpp"
+#include "../core/simulation.hpp"
+#include "../excitation/excitation.hpp"
+#include "scene.hpp"
+#include "scene_simulation.hpp"
+
+namespace furniture_fem {
+
+inline constexpr const char* version_string = "0.1.0";
+
+struct RunOptions {
+  std::string out_dir;                        // empty: the scene's outputs.folder
+  bool write_files = true;                    // false: no folder, no files, no figures; the summary only
+  bool progress = true;                       // progress bar on stderr
+  std::optional<double> duration;             // overrides the scene's duration (s)
+  // History rows (CSV, figures, energy checks) every output_interval s of simulated time, rounded to
+  // whole steps as SceneSpec::refresh_interval_steps() rounds refresh_every (0.01 s: every 10 steps
+  // at dt = 1 ms). See RunView::row_interval_steps.
+  double output_interval = 0.01;
+  const std::atomic<bool>* stop = nullptr;    // set by a signal handler to stop cleanly
+  std::optional<bool> figures;                // overrides outputs.figures
+  // A run that creates energy cannot be trusted: it ends as "diverged", with a diagnosis, as soon as
+  // the contact forces' net work or the ledger's imbalance exceeds this fraction of the ledger's scale
+  // (the contact laws only store and dissipate energy, the integrators only dissipate; checked at
+  // every output row). 0: never. See energy_creation_diagnosis().
+  double energy_creation_limit = 0.25;
+  // A run that completes having lost more than this fraction of the ledger's scale (impacts with the
+  // carried-over penalty contact, or a time step too long for the penalty) is kept, but its summary's
+  // diagnosis warns that the energy ledger does not close. See energy_loss_warning().
+  double energy_loss_warning = 0.15;
+};
+
+struct ItemFinalState {
+  std::string name;
+  std::string state;          // standing, slid, tilted, fell, overturned, resting_on_item
+                              // (fell: upright again at the end, but it tipped past 60 degrees or came
+                              // down more than 5 cm on the way, e.g. off the item it stood on)
+  double slide = 0;           // horizontal displacement of the centre of gravity (m)
+  double tilt_deg = 0;        // angle of the item's vertical axis from the vertical
+  double max_tilt_deg = 0;    // during the run
+  double lift = 0;            // height of the lowest node above the floor contact onset (m)
+  std::string resting_on;     // the item it leans or rests on, if any
+  Vec3 cog_displacement = Vec3::Zero();
+};
+
+// The extremes of one requested sectional force over every step of the run (N, N m; times in s).
+// Components in the order N, Qy, Qz, Mx, My, Mz.
+struct SectionForcePeak {
+  std::string section;  // item:member#element
+  std::array<double, 6> min, max, t_min, t_max;
+};
+
+struct RunSummary {
+  std::string status = "completed";  // completed, stopped, diverged
+  std::string diagnosis;             // why it stopped; for a completed run, empty or an energy-loss warning
+  double t_end = 0, duration = 0;
+  long steps = 0;
+  double wall_seconds = 0;
+  double energy_imbalance = 0;        // |imbalance| / scale of the ledger at the end
+  double max_energy_imbalance = 0;    // the largest during the run (at the history rows)
+  long factorizations = 0;
+  int elements = 0, nodes = 0, bodies = 0;
+  std::vector<ItemFinalState> items;
+  std::vector<SectionForcePeak> section_peaks;  // one per outputs.sectional_forces request
+  std::string out_dir;                          // empty when the run wrote no files
+};
+
+// A read-only view of the stepping simulation, whatever its contact law and linear solver (the
+// methods of Simulation an observer needs; see docs/core for their meaning).
+class SimulationView {
+ public:
+  virtual ~SimulationView() = default;
+  virtual double time() const = 0;                       // s
+  virtual long steps() const = 0;
+  virtual const Vec3& position(int node) const = 0;      // m, world axes
+  virtual const Vec3& displacement(int node) const = 0;  // m, relative to the table
+  virtual const Mat3& rotation(int node) const = 0;
+  virtual Vec6 velocity(int node) const = 0;
+  virtual double nodal_mass(int node) const = 0;         // kg
+  virtual SectionForces section_forces(int element) const = 0;
+  virtual EnergyLedger energy() const = 0;               // J; costs a sweep over the elements
+  // Contact force on body_a from body_b, summed per pair, in the last contact evaluation (body_b -1:
+  // the floor, -2: a wall).
+  virtual const std::vector<PairForce>& pair_forces() const = 0;
+  virtual long factorizations() const = 0;
+  virtual const StepTimings& timings() const = 0;
+  virtual std::string integrator_name() const = 0;
+  virtual std::string_view solver_name() const = 0;
+  virtual std::string_view element_name() const = 0;
+};
+
+// The stepping side, seen only by the runner.
+class SteppedSimulation : public SimulationView {
+ public:
+  virtual StepInfo step() = 0;
+};
+
+namespace detail {
+template <class Sim>
+struct policies_of;
+template <class Element, class Integrator, class Solver, class Contact>
+struct policies_of<Simulation<Element, Integrator, Solver, Contact>> {
+  using element = Element;
+  using solver = Solver;
+};
+}  // namespace detail
+
+// The view of one composed Simulation (the only observer-facing code instantiated per law and solver).
+template <class Sim>
+class SimulationViewOf final : public SteppedSimulation {
+ public:
+  explicit SimulationViewOf(Sim& sim) : sim_(sim) {}
+  StepInfo step() override { return sim_.step(); }
+  double time() const override { return sim_.time(); }
+  long steps() const override { return sim_.steps(); }
+  const Vec3& position(int n) const override { return sim_.position(n); }
+  const Vec3& displacement(int n) const override { return sim_.displacement(n); }
+  const Mat3& rotation(int n) const override { return sim_.rotation(n); }
+  Vec6 velocity(int n) const override { return sim_.velocity(n); }
+  double nodal_mass(int n) const override { return sim_.nodal_mass(n); }
+  SectionForces section_forces(int e) const override { return sim_.section_forces(e); }
+  EnergyLedger energy() const override { return sim_.energy(); }
+  const std::vector<PairForce>& pair_forces() const override { return sim_.contact_model().pair_forces(); }
+  long factorizations() const override { return sim_.factorizations(); }
+  const StepTimings& timings() const override { return sim_.timings(); }
+  std::string integrator_name() const override { return sim_.integrator().name(); }
+  std::string_view solver_name() const override { return detail::policies_of<Sim>::solver::name; }
+  std::string_view element_name() const override { return detail::policies_of<Sim>::element::name; }
+
+ private:
+  Sim& sim_;
+};
+
+// The scene's outputs requests resolved to nodes and elements (resolve_output_requests, runner.hpp).
+struct MarkerOutput {
+  std::string name;  // the column prefix: item.marker, or the request's name
+  int node;
+};
+struct SectionOutput {
+  std::string name;  // item:member#element
+  int element;
+};
+struct ResolvedOutputs {
+  std::vector<MarkerOutput> markers;
+  std::vector<SectionOutput> sections;
+};
+
+// What every observer receives: the scene and its model, the simulation (read-only), the options,
+// and the run's schedule. One RunView lives for the whole run; its `sim` always shows the current state.
+struct RunView {
+  const SceneSpec& spec;
+  const Model& model;
+  const std::vector<ItemInfo>& items;
+  const TableMotion& motion;                // the table's acceleration (m/s^2)
+  const std::vector<int>& rigid_bodies;     // bodies solved as rigid bodies
+  const ResolvedOutputs& requests;
+  const SimulationView& sim;
+  const RunOptions& options;
+  std::string out_dir;                      // the results folder; empty: write no files
+  double t_end = 0;                         // the time the run is to reach (s)
+  int row_interval_steps = 1;               // history rows every this many steps (RunOptions::output_interval)
+  double settle_from = 0;                   // the run's last 0.5 s start here (s): what rests on what
+  // The energy ledger at the latest history row (the runner computes it once per row).
+  EnergyLedger row_energy;
+
+  // True at the initial state and every row_interval_steps steps: history observers write a row.
+  bool row_due() const { return sim.steps() % row_interval_steps == 0; }
+  const ItemInfo& item(const std::string& name) const {
+    for (const auto& it : items)
+      if (it.name == name) return it;
+    throw InputError(spec.source, 0, "item", "no item named '" + name + "'");
+  }
+};
+
+// An observer of a run. The runner calls, for each observer in its list, in list order:
+//   begin(run)             once, at the initial state (run.sim.steps() == 0), before the first step;
+//   after_step(run, step)  after every step the run keeps (a step that throws, or that fails the
+//                          energy check at a history row, ends the run before any observer sees it);
+//   end(run, summary)      once, however the run ended (completed, stopped, diverged), with the summary's
+//                          status, diagnosis, times, counts and energy figures filled in, plus what the
+//                          observers before this one added (final states, section peaks).
+// An observer reads the simulation through run.sim only, so it cannot change the run's results. A
+// SimulationError thrown from after_step ends the run as "diverged"; any other exception leaves run_scene.
+class RunObserver {
+ public:
+  virtual ~RunObserver() = default;
+  virtual void begin(const RunView& run) {}
+  virtual void after_step(const RunView& run, const StepInfo& step) {}
+  virtual void end(const RunView& run, RunSummary& summary) {}
+};
+
+// Angle of a body's vertical axis from the vertical (deg), from its best rigid rotation.
+inline double body_tilt_deg(const SimulationView& sim, const Model& model, int body) {
+  return detail::tilt_of(detail::body_rotation_of(sim, model, body));
+}
+
+}  // namespace furniture_fem

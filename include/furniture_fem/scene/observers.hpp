@@ -1,0 +1,545 @@
+#pragma once
+// furniture_fem/scene/observers.hpp: the run's built-in observers (observer.hpp), one per output.
+//
+//   ProgressBar            progress and ETA on stderr                   RunOptions::progress
+//   FinalStates            every item's final state -> RunSummary::items                 always
+//   SectionPeaks           sectional force extremes -> RunSummary::section_peaks         always
+//   MarkerHistory          markers.csv                                   files
+//   SectionalForceHistory  sectional_forces.csv                          files
+//   EnergyHistory          energy.csv                                    files
+//   ContactForceHistory    contact_forces.csv                            files
+//   VtuSeries              room.pvd, vtu/room_<step>.vtu                 files, outputs.vtu_every > 0
+//   FinalStateFile         final_state.json                              files
+//   SummaryFile            summary.json                                  files
+//   Figures                marker_*.png, shear_*.png, room_final.png     files, figures on
+//
+// standard_observers() picks them from the scene's outputs and the RunOptions. The file formats are
+// described in docs/io/output.md.
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "../figures/plot.hpp"
+#include "../io/csv.hpp"
+#include "../io/vtk.hpp"
+#include "observer.hpp"
+
+namespace furniture_fem {
+
+namespace detail {
+
+inline void write_text(const std::string& path, const std::string& text) {
+  std::ofstream f(path);
+  if (!f) throw std::runtime_error("cannot write " + path);
+  f << text;
+}
+
+// Geometry of the whole model for the VTU files and the 3-D figure.
+template <class Sim>
+LineMesh line_mesh(const Sim& sim, const Model& model, bool forces) {
+  LineMesh mesh;
+  mesh.points.reserve(model.num_nodes());
+  for (int n = 0; n < model.num_nodes(); ++n) mesh.points.push_back(sim.position(n));
+  std::vector<Vec3> disp(model.num_nodes());
+  for (int n = 0; n < model.num_nodes(); ++n) disp[n] = sim.displacement(n);
+  std::vector<double> body(model.num_elements()), axial(model.num_elements()), shear(model.num_elements()),
+      moment(model.num_elements());
+  for (int e = 0; e < model.num_elements(); ++e) {
+    mesh.lines.push_back({model.elements()[e].n1, model.elements()[e].n2});
+    body[e] = model.elements()[e].body;
+    if (forces) {
+      const auto f = sim.section_forces(e);
+      axial[e] = f.N;
+      shear[e] = std::hypot(f.Qy, f.Qz);
+      moment[e] = std::hypot(f.My, f.Mz);
+    }
+  }
+  mesh.add_point_vector("displacement", disp);
+  mesh.add_cell_scalar("body", body);
+  if (forces) {
+    mesh.add_cell_scalar("N", axial);
+    mesh.add_cell_scalar("Q", shear);
+    mesh.add_cell_scalar("M", moment);
+  }
+  return mesh;
+}
+
+inline std::array<double, 6> section_components(const SectionForces& f) { return {f.N, f.Qy, f.Qz, f.Mx, f.My, f.Mz}; }
+
+inline nlohmann::json final_state_json(const std::vector<ItemFinalState>& items) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const auto& s : items)
+    a.push_back({{"item", s.name},
+                 {"state", s.state},
+                 {"slide_m", s.slide},
+                 {"tilt_deg", s.tilt_deg},
+                 {"max_tilt_deg", s.max_tilt_deg},
+                 {"lift_m", s.lift},
+                 {"resting_on", s.resting_on},
+                 {"cog_displacement_m", {s.cog_displacement.x(), s.cog_displacement.y(), s.cog_displacement.z()}}});
+  return a;
+}
+
+inline nlohmann::json section_peaks_json(const std::vector<SectionForcePeak>& peaks) {
+  nlohmann::json a = nlohmann::json::array();
+  const char* names[6] = {"N", "Qy", "Qz", "Mx", "My", "Mz"};
+  for (const auto& pk : peaks) {
+    nlohmann::json e = {{"section", pk.section}};
+    for (int c = 0; c < 6; ++c)
+      e[names[c]] = {{"min", pk.min[c]}, {"t_min_s", pk.t_min[c]}, {"max", pk.max[c]}, {"t_max_s", pk.t_max[c]}};
+    a.push_back(e);
+  }
+  return a;
+}
+
+}  // namespace detail
+
+class ProgressBar : public RunObserver {
+ public:
+  void begin(const RunView& run) override {
+    start_ = std::chrono::steady_clock::now();
+    last_print_ = -1;
+  }
+  void after_step(const RunView& run, const StepInfo&) override { update(run.sim.time(), run.t_end, false); }
+  void end(const RunView& run, RunSummary&) override { update(run.sim.time(), run.t_end, true); }
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+  double last_print_ = -1;
+  void update(double t, double t_end, bool last) {
+    const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (!last && el - last_print_ < 0.25) return;
+    last_print_ = el;
+    const double frac = t_end > 0 ? std::clamp(t / t_end, 0.0, 1.0) : 1.0;
+    const int width = 30, filled = static_cast<int>(frac * width);
+    const double eta = frac > 1e-9 ? el * (1 - frac) / frac : 0;
+    std::fprintf(stderr, "\r[%.*s%*s] %5.1f%%  t = %6.3f / %.3f s  elapsed %6.1f s  ETA %6.1f s ", filled,
+                 "##############################", width - filled, "", 100 * frac, t, t_end, el, eta);
+    if (last) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+  }
+};
+
+// Every item's final state (RunSummary::items): slide, tilt, lift and what it rests on. The largest
+// tilt is sampled at the history rows. What an item rests on is judged from the item-item vertical
+// contact forces' mean over every step of the run's last 0.5 s (a penalty contact at rest chatters
+// from one step to the next); a run that ended before its last 0.5 s judges from its last step.
+class FinalStates : public RunObserver {
+ public:
+  void begin(const RunView& run) override {
+    max_tilt_.assign(run.model.num_bodies(), 0.0);
+    track_tilt(run);
+  }
+  void after_step(const RunView& run, const StepInfo&) override {
+    if (run.sim.time() >= run.settle_from - 1e-9) {
+      ++settle_steps_;
+      add_item_forces(run.sim.pair_forces());
+    }
+    if (run.row_due()) track_tilt(run);
+  }
+  void end(const RunView& run, RunSummary& summary) override {
+    if (settle_steps_ == 0) {
+      settle_steps_ = 1;
+      add_item_forces(run.sim.pair_forces());
+    }
+    for (const auto& it : run.items) summary.items.push_back(final_state(run, it));
+  }
+
+ private:
+  std::vector<double> max_tilt_;
+  std::map<std::pair<int, int>, double> settle_fz_on_a_;
+  int settle_steps_ = 0;
+
+  void track_tilt(const RunView& run) {
+    for (int b = 0; b < run.model.num_bodies(); ++b) max_tilt_[b] = std::max(max_tilt_[b], body_tilt_deg(run.sim, run.model, b));
+  }
+  void add_item_forces(const std::vector<PairForce>& forces) {
+    for (const auto& pf : forces)
+      if (pf.body_a >= 0 && pf.body_b >= 0) settle_fz_on_a_[{pf.body_a, pf.body_b}] += pf.force_on_a.z();
+  }
+  ItemFinalState final_state(const RunView& run, const ItemInfo& it) const {
+    const Model& model = run.model;
+    const SimulationView& sim = run.sim;
+    ItemFinalState st;
+    st.name = it.name;
+    const Mat3 Q = detail::body_rotation_of(sim, model, it.body);
+    const Vec3 cog0 = model.body_centre_of_gravity(it.body);
+    Vec3 cog = Vec3::Zero();
+    double m = 0;
+    for (int e : model.body(it.body).elements) {
+      const double me = model.elements()[e].line_mass * model.element_length(e);
+      cog += me * 0.5 * (sim.position(model.elements()[e].n1) + sim.position(model.elements()[e].n2));
+      m += me;
+    }
+    cog /= m;
+    st.cog_displacement = cog - cog0;
+    st.slide = std::hypot(st.cog_displacement.x(), st.cog_displacement.y());
+    st.tilt_deg = detail::tilt_of(Q);
+    st.max_tilt_deg = max_tilt_[it.body];
+    double low = 1e9, low0 = 1e9;
+    for (int n : model.body(it.body).nodes) {
+      low = std::min(low, sim.position(n).z());
+      low0 = std::min(low0, model.node(n).X.z());
+    }
+    st.lift = low - low0;
+    // It rests (or leans) on the item that pushes it up the most (more than 1 N on average over the
+    // last 0.5 s): an item pressed down by another one does not rest on it.
+    double most_up = 1.0;
+    for (const auto& [pair, fz_sum] : settle_fz_on_a_) {
+      const auto [a, b] = pair;
+      const int other = a == it.body ? b : b == it.body ? a : -100;
+      if (other < 0) continue;
+      const double up = (a == it.body ? fz_sum : -fz_sum) / settle_steps_;
+      if (up > most_up) most_up = up, st.resting_on = model.body(other).name;
+    }
+    if (st.tilt_deg > 60) st.state = "overturned";
+    else if (!st.resting_on.empty() && (st.tilt_deg > 5 || st.lift > 0.03)) st.state = "resting_on_item";
+    else if (st.tilt_deg > 5) st.state = "tilted";
+    else if (st.max_tilt_deg > 60 || st.lift < -0.05) st.state = "fell";
+    else if (st.slide > 0.01) st.state = "slid";
+    else st.state = "standing";
+    return st;
+  }
+};
+
+// Extremes of the requested sectional forces over every step (RunSummary::section_peaks): the
+// history rows can miss an impact's peak, which lasts a few ms.
+class SectionPeaks : public RunObserver {
+ public:
+  void begin(const RunView& run) override {
+    for (const auto& s : run.requests.sections) {
+      SectionForcePeak pk;
+      pk.section = s.name;
+      pk.min.fill(std::numeric_limits<double>::infinity());
+      pk.max.fill(-std::numeric_limits<double>::infinity());
+      pk.t_min.fill(0);
+      pk.t_max.fill(0);
+      peaks_.push_back(pk);
+    }
+    track(run);
+  }
+  void after_step(const RunView& run, const StepInfo&) override { track(run); }
+  void end(const RunView&, RunSummary& summary) override { summary.section_peaks = peaks_; }
+
+ private:
+  std::vector<SectionForcePeak> peaks_;
+  void track(const RunView& run) {
+    const double t = run.sim.time();
+    for (size_t i = 0; i < peaks_.size(); ++i) {
+      const auto v = detail::section_components(run.sim.section_forces(run.requests.sections[i].element));
+      auto& pk = peaks_[i];
+      for (int c = 0; c < 6; ++c) {
+        if (v[c] < pk.min[c]) pk.min[c] = v[c], pk.t_min[c] = t;
+        if (v[c] > pk.max[c]) pk.max[c] = v[c], pk.t_max[c] = t;
+      }
+    }
+  }
+};
+
+// A CSV history written at the history rows: derived observers give the columns and each row.
+class RowHistory : public RunObserver {
+ public:
+  void begin(const RunView& run) override {
+    csv_.emplace(run.out_dir + "/" + file(), columns(run));
+    write_row(run);
+  }
+  void after_step(const RunView& run, const StepInfo&) override {
+    if (run.row_due()) write_row(run);
+  }
+  void end(const RunView&, RunSummary&) override { csv_->flush(); }
+
+ protected:
+  virtual std::string file() const = 0;
+  virtual std::vector<std::string> columns(const RunView& run) const = 0;
+  virtual void write_row(const RunView& run) = 0;
+  CsvWriter& csv() { return *csv_; }
+
+ private:
+  std::optional<CsvWriter> csv_;
+};
+
+// markers.csv: t, then <marker>_x, _y, _z per marker (displacement relative to the table, m).
+class MarkerHistory : public RowHistory {
+  std::string file() const override { return "markers.csv"; }
+  std::vector<std::string> columns(const RunView& run) const override {
+    std::vector<std::string> cols{"t"};
+    for (const auto& m : run.requests.markers)
+      for (const char* c : {"_x", "_y", "_z"}) cols.push_back(m.name + c);
+    return cols;
+  }
+  void write_row(const RunView& run) override {
+    std::vector<double> row{run.sim.time()};
+    for (const auto& m : run.requests.markers) {
+      const Vec3 d = run.sim.displacement(m.node);
+      row.insert(row.end(), {d[0], d[1], d[2]});
+    }
+    csv().row(row);
+  }
+};
+
+// sectional_forces.csv: t, then <section>_N, _Qy, _Qz, _Mx, _My, _Mz per request (N, N m).
+class SectionalForceHistory : public RowHistory {
+  std::string file() const override { return "sectional_forces.csv"; }
+  std::vector<std::string> columns(const RunView& run) const override {
+    std::vector<std::string> cols{"t"};
+    for (const auto& s : run.requests.sections)
+      for (const char* c : {"_N", "_Qy", "_Qz", "_Mx", "_My", "_Mz"}) cols.push_back(s.name + c);
+    return cols;
+  }
+  void write_row(const RunView& run) override {
+    std::vector<double> row{run.sim.time()};
+    for (const auto& s : run.requests.sections) {
+      const auto v = detail::section_components(run.sim.section_forces(s.element));
+      row.insert(row.end(), v.begin(), v.end());
+    }
+    csv().row(row);
+  }
+};
+
+// energy.csv: the energy ledger at each row (J).
+class EnergyHistory : public RowHistory {
+  std::string file() const override { return "energy.csv"; }
+  std::vector<std::string> columns(const RunView&) const override {
+    return {"t", "kinetic", "strain", "gravity_potential", "external_work", "contact_work", "damping_work", "plastic_work",
+            "imbalance"};
+  }
+  void write_row(const RunView& run) override {
+    const EnergyLedger& E = run.row_energy;
+    csv().row({run.sim.time(), E.kinetic, E.strain, E.gravity_potential, E.external_work, E.contact_work, E.damping_work,
+               E.plastic_work, E.imbalance()});
+  }
+};
+
+// contact_forces.csv: one row per pair of bodies in contact and row time. Each pair's force is its
+// mean over the steps since the previous row: a penalty contact at rest chatters from one step to the
+// next, and single steps sampled one phase of it (a cabinet at rest showed -75 N from the floor). The
+// first rows are the initial state's forces.
+class ContactForceHistory : public RunObserver {
+ public:
+  void begin(const RunView& run) override {
+    csv_.emplace(run.out_dir + "/contact_forces.csv", std::vector<std::string>{"t", "body_a", "body_b", "fx", "fy", "fz"});
+    const double t = run.sim.time();
+    for (const auto& pf : run.sim.pair_forces())
+      csv_->row({t, double(pf.body_a), double(pf.body_b), pf.force_on_a.x(), pf.force_on_a.y(), pf.force_on_a.z()});
+  }
+  void after_step(const RunView& run, const StepInfo&) override {
+    ++steps_;
+    for (const auto& pf : run.sim.pair_forces())
+      sum_.try_emplace({pf.body_a, pf.body_b}, Vec3::Zero()).first->second += pf.force_on_a;
+    if (!run.row_due()) return;
+    for (const auto& [pair, f] : sum_) {
+      const Vec3 mean = f / steps_;
+      if (mean.squaredNorm() > 0) csv_->row({run.sim.time(), double(pair.first), double(pair.second), mean.x(), mean.y(), mean.z()});
+    }
+    sum_.clear();
+    steps_ = 0;
+  }
+  void end(const RunView&, RunSummary&) override { csv_->flush(); }
+
+ private:
+  std::optional<CsvWriter> csv_;
+  std::map<std::pair<int, int>, Vec3> sum_;
+  int steps_ = 0;
+};
+
+// room.pvd and vtu/room_<step>.vtu every outputs.vtu_every steps (the model's lines, displacements,
+// body ids and the element forces N, |Q|, |M|).
+class VtuSeries : public RunObserver {
+ public:
+  void begin(const RunView& run) override {
+    std::filesystem::create_directories(run.out_dir + "/vtu");
+    pvd_.emplace(run.out_dir + "/room.pvd");
+    write_frame(run);
+  }
+  void after_step(const RunView& run, const StepInfo&) override {
+    if (run.sim.steps() % run.spec.outputs.vtu_every == 0) write_frame(run);
+  }
+
+ private:
+  std::optional<PvdWriter> pvd_;
+  void write_frame(const RunView& run) {
+    const std::string name = "vtu/room_" + std::to_string(run.sim.steps()) + ".vtu";
+    write_vtu(run.out_dir + "/" + name, detail::line_mesh(run.sim, run.model, true));
+    pvd_->add(run.sim.time(), name);
+    pvd_->write();
+  }
+};
+
+// final_state.json: RunSummary::items.
+class FinalStateFile : public RunObserver {
+ public:
+  void end(const RunView& run, RunSummary& summary) override {
+    detail::write_text(run.out_dir + "/final_state.json", detail::final_state_json(summary.items).dump(2) + "\n");
+  }
+};
+
+// summary.json: the scene, how the run went, the model's size, the solver's parts and timings, the
+// final states and the sectional force peaks.
+class SummaryFile : public RunObserver {
+ public:
+  void end(const RunView& run, RunSummary& sum) override {
+    const SimulationView& sim = run.sim;
+    const StepTimings& timings = sim.timings();
+    nlohmann::json rigid = nlohmann::json::array();
+    for (int b : run.rigid_bodies) rigid.push_back(run.model.body(b).name);
+    const TableMotion& motion = run.motion;
+    nlohmann::json summary = {
+        {"furniture_fem_version", version_string},
+        {"scene", to_json(run.spec)},
+        {"status", sum.status},
+        {"diagnosis", sum.diagnosis},
+        {"t_end_s", sum.t_end},
+        {"duration_s", sum.duration},
+        {"steps", sum.steps},
+        {"dt_s", run.spec.dt},
+        {"wall_seconds", sum.wall_seconds},
+        {"elements", sum.elements},
+        {"nodes", sum.nodes},
+        {"bodies", sum.bodies},
+        {"element_policy", std::string(sim.element_name())},
+        {"integrator", sim.integrator_name()},
+        {"linear_solver", std::string(sim.solver_name())},
+        {"factorizations", sum.factorizations},
+        {"rigid_bodies", rigid},
+        // Wall seconds: contact, the sweep over the bodies, the rest, total; inside the sweep, thread
+        // seconds summed over the bodies (Simulation's StepTimings): solve, factorize, elements.
+        {"step_time_s", {{"contact", timings.contact},
+                         {"bodies", timings.bodies},
+                         {"other", timings.other()},
+                         {"total", timings.total},
+                         {"solve_thread", timings.solve},
+                         {"factorize_thread", timings.factorize},
+                         {"elements_thread", timings.elements}}},
+        {"energy_imbalance_relative", sum.energy_imbalance},
+        {"max_energy_imbalance_relative", sum.max_energy_imbalance},
+        {"ground_motion_peak_m_s2",
+         {motion.x.peak(), motion.has_y ? motion.y.peak() : 0.0, motion.has_z ? motion.z.peak() : 0.0}},
+        {"final_state", detail::final_state_json(sum.items)},
+        {"sectional_force_peaks", detail::section_peaks_json(sum.section_peaks)},
+        {"eigen_version", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
+                              std::to_string(EIGEN_MINOR_VERSION)}};
+    detail::write_text(run.out_dir + "/summary.json", summary.dump(2) + "\n");
+  }
+};
+
+// The PNG figures, drawn at the end from histories sampled at the rows: one figure per marker with
+// X / Y / Z panels (as the paper's Figures 16-18), the shear forces Qy and Qz of each requested
+// section, and the room's final state in 3-D.
+class Figures : public RunObserver {
+ public:
+  void begin(const RunView& run) override {
+    marker_series_.resize(3 * run.requests.markers.size());
+    shear_series_.resize(2 * run.requests.sections.size());
+    sample(run);
+  }
+  void after_step(const RunView& run, const StepInfo&) override {
+    if (run.row_due()) sample(run);
+  }
+  void end(const RunView& run, RunSummary&) override {
+    draw_markers(run);
+    draw_shears(run);
+    draw_room(run);
+  }
+
+ private:
+  std::vector<double> t_;
+  std::vector<std::vector<double>> marker_series_, shear_series_;
+
+  void sample(const RunView& run) {
+    t_.push_back(run.sim.time());
+    for (size_t i = 0; i < run.requests.markers.size(); ++i) {
+      const Vec3 d = run.sim.displacement(run.requests.markers[i].node);
+      for (int c = 0; c < 3; ++c) marker_series_[3 * i + c].push_back(d[c]);
+    }
+    for (size_t i = 0; i < run.requests.sections.size(); ++i) {
+      const auto f = run.sim.section_forces(run.requests.sections[i].element);
+      shear_series_[2 * i].push_back(f.Qy);
+      shear_series_[2 * i + 1].push_back(f.Qz);
+    }
+  }
+  void draw_markers(const RunView& run) const {
+    const auto& markers = run.requests.markers;
+    for (size_t i = 0; i < markers.size(); ++i) {
+      LinePlot p;
+      p.title("Displacement relative to the table: " + markers[i].name).xlabel("time (s)").panels(3);
+      const char* axis[3] = {"X (m)", "Y (m)", "Z (m)"};
+      for (int c = 0; c < 3; ++c) {
+        p.ylabel(axis[c], c);
+        p.add(t_, marker_series_[3 * i + c], markers[i].name, c);
+      }
+      std::string file = markers[i].name;
+      for (char& ch : file)
+        if (ch == '/' || ch == ' ' || ch == ':') ch = '_';
+      p.save_png(run.out_dir + "/marker_" + file + ".png", 1000, 750);
+    }
+  }
+  void draw_shears(const RunView& run) const {
+    const auto& sections = run.requests.sections;
+    for (size_t i = 0; i < sections.size(); ++i) {
+      LinePlot p;
+      p.title("Shear force: " + sections[i].name).xlabel("time (s)").panels(2);
+      p.ylabel("Qy (N)", 0).ylabel("Qz (N)", 1);
+      p.add(t_, shear_series_[2 * i], "Qy", 0);
+      p.add(t_, shear_series_[2 * i + 1], "Qz", 1);
+      p.save_png(run.out_dir + "/shear_" + std::to_string(i) + ".png", 1000, 600);
+    }
+  }
+  void draw_room(const RunView& run) const {
+    const SceneSpec& spec = run.spec;
+    const Model& model = run.model;
+    Wireframe3D w;
+    w.title(spec.name + ": final state at t = " + std::to_string(run.sim.time()).substr(0, 5) + " s").camera(-60, 25);
+    std::vector<Segment3> segs;
+    std::vector<RGB> cols;
+    for (int e = 0; e < model.num_elements(); ++e) {
+      segs.push_back({run.sim.position(model.elements()[e].n1), run.sim.position(model.elements()[e].n2)});
+      cols.push_back(palette_color(model.elements()[e].body));
+    }
+    w.add_segments(segs, cols);
+    w.floor_grid(-0.5 * spec.table.size_x, 0.5 * spec.table.size_x, -0.5 * spec.table.size_y,
+                 0.5 * spec.table.size_y, spec.table.floor_z, 0.5);
+    for (const auto& wall : spec.walls) {
+      const Vec3 u = Vec3::UnitZ().cross(wall.normal).normalized() * 0.5 * wall.width;
+      const Vec3 h(0, 0, wall.height);
+      w.add_quad({wall.point - u, wall.point + u, wall.point + u + h, wall.point - u + h}, RGB{150, 150, 150}, 0.15);
+    }
+    for (const auto& it : run.items) w.legend(it.name, palette_color(it.body));
+    w.save_png(run.out_dir + "/room_final.png", 1000, 800);
+  }
+};
+
+// The observers a run gets from its scene's outputs and its options, in the order they are called:
+// the progress bar, the outcomes (final states, section peaks, filled into the RunSummary), then, when
+// the run writes files, the histories, the VTU series, final_state.json, summary.json and the figures.
+inline std::vector<std::unique_ptr<RunObserver>> standard_observers(const RunView& run) {
+  std::vector<std::unique_ptr<RunObserver>> list;
+  if (run.options.progress) list.push_back(std::make_unique<ProgressBar>());
+  list.push_back(std::make_unique<FinalStates>());
+  list.push_back(std::make_unique<SectionPeaks>());
+  if (run.out_dir.empty()) return list;
+  list.push_back(std::make_unique<MarkerHistory>());
+  list.push_back(std::make_unique<SectionalForceHistory>());
+  list.push_back(std::make_unique<EnergyHistory>());
+  list.push_back(std::make_unique<ContactForceHistory>());
+  if (run.spec.outputs.vtu_every > 0) list.push_back(std::make_unique<VtuSeries>());
+  list.push_back(std::make_unique<FinalStateFile>());
+  list.push_back(std::make_unique<SummaryFile>());
+  if (run.options.figures.value_or(run.spec.outputs.figures)) list.push_back(std::make_unique<Figures>());
+  return list;
+}
+
+}  // namespace furniture_fem

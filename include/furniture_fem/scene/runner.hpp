@@ -1,0 +1,188 @@
+#pragma once
+// furniture_fem/scene/runner.hpp: the run loop.
+//
+//   RunSummary run_scene(const SceneSpec&, const RunOptions& = {}, const std::vector<RunObserver*>& extra = {})
+//
+// Builds the scene's simulation (the contact law and the linear solver are compile-time policies,
+// picked here from the scene's runtime choice; only the stepping is instantiated per combination),
+// then steps it, calling the observers (observer.hpp) at the start, after every step and at the end:
+// the standard ones picked from the scene's outputs and the options (observers.hpp), then `extra`. A
+// stop request (Ctrl-C), a diverging step or a step that creates energy ends the run early, with
+// everything written so far readable and the reason in the summary.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "observer.hpp"
+#include "observers.hpp"
+#include "scene_simulation.hpp"
+
+namespace furniture_fem {
+
+// The scene's output requests resolved to nodes and elements; errors name the request.
+inline ResolvedOutputs resolve_output_requests(const SceneSpec& spec, const Model& model, const std::vector<ItemInfo>& items) {
+  const auto item_by_name = [&](const std::string& name, const std::string& key) -> const ItemInfo& {
+    for (const auto& it : items)
+      if (it.name == name) return it;
+    throw InputError(spec.source, 0, key, "no item named '" + name + "'");
+  };
+  ResolvedOutputs out;
+  for (size_t i = 0; i < spec.outputs.markers.size(); ++i) {
+    const auto& m = spec.outputs.markers[i];
+    const std::string key = "outputs.markers[" + std::to_string(i) + "]";
+    const ItemInfo& it = item_by_name(m.item, key + ".item");
+    int node = -1;
+    if (m.point) node = nearest_node(model, it.body, it.to_world(*m.point));
+    else if (const Marker* mk = it.marker(m.marker)) node = mk->node;
+    else throw InputError(spec.source, 0, key + ".marker", "item '" + m.item + "' has no marker '" + m.marker + "'");
+    out.markers.push_back({m.name.empty() ? m.item + "." + m.marker : m.name, node});
+  }
+  for (size_t i = 0; i < spec.outputs.sectional_forces.size(); ++i) {
+    const auto& r = spec.outputs.sectional_forces[i];
+    const std::string key = "outputs.sectional_forces[" + std::to_string(i) + "]";
+    const ItemInfo& it = item_by_name(r.item, key + ".item");
+    const int m = find_member(model, it.body, r.member);
+    if (m < 0) throw InputError(spec.source, 0, key + ".member", "item '" + r.item + "' has no member '" + r.member + "'");
+    if (r.element < 0 || r.element >= model.member(m).element_count)
+      throw InputError(spec.source, 0, key + ".element",
+                       "member '" + r.member + "' has " + std::to_string(model.member(m).element_count) +
+                           " elements (got " + std::to_string(r.element) + ")");
+    out.sections.push_back({r.item + ":" + r.member + "#" + std::to_string(r.element), model.member(m).first_element + r.element});
+  }
+  return out;
+}
+
+// RunOptions::output_interval in steps of dt, rounded as SceneSpec::refresh_interval_steps() rounds.
+inline int row_interval_steps(const RunOptions& opt, double dt) {
+  if (!(opt.output_interval > 0) || !std::isfinite(opt.output_interval))
+    throw InputError("RunOptions", 0, "output_interval",
+                     "must be a positive time in s (got " + std::to_string(opt.output_interval) + ")");
+  return static_cast<int>(std::clamp(std::lround(opt.output_interval / dt), 1L, 1000000000L));
+}
+
+namespace detail {
+
+// The parts of a composed scene the loop needs, whatever its law and solver.
+struct ComposedScene {
+  const Model& model;
+  const std::vector<ItemInfo>& items;
+  const TableMotion& motion;
+  const std::vector<int>& rigid_bodies;
+  SteppedSimulation& sim;
+};
+
+// The energy check at the history rows: a run creating energy ends as "diverged" before anything of
+// the row is written (energy_creation_diagnosis).
+inline void check_energy_creation(const RunView& run, const ContactStepEstimate& estimate) {
+  const std::string why =
+      energy_creation_diagnosis(run.row_energy, run.spec.dt, run.options.energy_creation_limit, estimate);
+  if (!why.empty()) throw SimulationError(run.sim.time(), why);
+}
+
+inline RunSummary run_observed(const SceneSpec& spec, const RunOptions& opt, const ComposedScene& scene,
+                               const std::vector<RunObserver*>& extra, std::chrono::steady_clock::time_point t_start) {
+  SteppedSimulation& sim = scene.sim;
+  const ResolvedOutputs requests = resolve_output_requests(spec, scene.model, scene.items);
+  const double t_end = opt.duration.value_or(spec.duration);
+  RunView run{spec,
+              scene.model,
+              scene.items,
+              scene.motion,
+              scene.rigid_bodies,
+              requests,
+              sim,
+              opt,
+              opt.write_files ? (opt.out_dir.empty() ? spec.outputs.folder : opt.out_dir) : std::string(),
+              t_end,
+              row_interval_steps(opt, spec.dt),
+              t_end - 0.5,
+              sim.energy()};
+  if (!run.out_dir.empty()) std::filesystem::create_directories(run.out_dir);
+  const ContactStepEstimate estimate =
+      contact_step_estimate(sim, scene.model, scene.items, scene_body_contacts(spec, scene.model, scene.items));
+
+  RunSummary sum;
+  sum.out_dir = run.out_dir;
+  sum.duration = run.t_end;
+  sum.elements = scene.model.num_elements();
+  sum.nodes = scene.model.num_nodes();
+  sum.bodies = scene.model.num_bodies();
+  const auto standard = standard_observers(run);
+  std::vector<RunObserver*> observers;
+  for (const auto& o : standard) observers.push_back(o.get());
+  observers.insert(observers.end(), extra.begin(), extra.end());
+
+  for (RunObserver* o : observers) o->begin(run);
+  try {
+    while (sim.time() < run.t_end - 0.5 * spec.dt) {
+      if (opt.stop && opt.stop->load()) {
+        sum.status = "stopped";
+        sum.diagnosis = "stopped by the user (interrupt) at t = " + std::to_string(sim.time()) + " s";
+        break;
+      }
+      const StepInfo step = sim.step();
+      if (run.row_due()) {
+        run.row_energy = sim.energy();
+        check_energy_creation(run, estimate);
+        const EnergyLedger& E = run.row_energy;
+        sum.max_energy_imbalance = std::max(sum.max_energy_imbalance, std::abs(E.imbalance()) / E.scale());
+      }
+      for (RunObserver* o : observers) o->after_step(run, step);
+    }
+  } catch (const SimulationError& e) {
+    sum.status = "diverged";
+    sum.diagnosis = e.what();
+  }
+
+  const EnergyLedger E = sim.energy();
+  sum.energy_imbalance = std::abs(E.imbalance()) / E.scale();
+  if (sum.status == "completed") sum.diagnosis = energy_loss_warning(E, spec.dt, opt.energy_loss_warning, estimate);
+  sum.t_end = sim.time();
+  sum.steps = sim.steps();
+  sum.factorizations = sim.factorizations();
+  sum.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  for (RunObserver* o : observers) o->end(run, sum);
+  return sum;
+}
+
+// The only code instantiated per contact law and linear solver: building the simulation and its view.
+template <class Law, class Solver>
+RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt, const std::vector<RunObserver*>& extra,
+                        std::chrono::steady_clock::time_point t_start) {
+  SceneSimulation<Law, Solver> scene(spec);
+  SimulationViewOf<typename SceneSimulation<Law, Solver>::Sim> view(*scene.sim);
+  return run_observed(spec, opt, {*scene.model, scene.items, scene.motion, scene.rigid_bodies, view}, extra, t_start);
+}
+
+}  // namespace detail
+
+// Runs a scene with the standard observers (its outputs, as RunOptions asks) and then `extra`, in
+// that order; returns its summary. RunOptions::write_files = false runs it without writing anything
+// (the summary still holds the final states and the section peaks).
+inline RunSummary run_scene(const SceneSpec& spec, const RunOptions& opt = {}, const std::vector<RunObserver*>& extra = {}) {
+  const auto t_start = std::chrono::steady_clock::now();
+  validate(spec);
+  row_interval_steps(opt, spec.dt);  // a bad interval fails before the model is built
+  const bool direct = spec.solver == SolverKind::direct;
+  switch (spec.contact.law) {
+    case ContactLawKind::paper:
+      return direct ? detail::run_composed<PaperLaw, DirectLdltSolver>(spec, opt, extra, t_start)
+                    : detail::run_composed<PaperLaw, ConjugateGradientSolver>(spec, opt, extra, t_start);
+    case ContactLawKind::paper_anisotropic:
+      return direct ? detail::run_composed<PaperAnisotropicFloorLaw, DirectLdltSolver>(spec, opt, extra, t_start)
+                    : detail::run_composed<PaperAnisotropicFloorLaw, ConjugateGradientSolver>(spec, opt, extra, t_start);
+    case ContactLawKind::spring_dashpot:
+      return detail::run_composed<SpringDashpotLaw, DirectLdltSolver>(spec, opt, extra, t_start);
+    case ContactLawKind::hunt_crossley:
+      return detail::run_composed<HuntCrossleyLaw, DirectLdltSolver>(spec, opt, extra, t_start);
+    case ContactLawKind::stick_slip:
+      return detail::run_composed<StickSlipLaw, DirectLdltSolver>(spec, opt, extra, t_start);
+  }
+  throw InputError(spec.source, 0, "contact.law", "unknown contact law");
+}
+
+}  // namespace furniture_fem

@@ -1,0 +1,326 @@
+#pragma once
+// furniture_fem/scene/scene_simulation.hpp: a scene turned into a composed simulation.
+//
+//   SceneSimulation<Law, Solver>    the model, items, table motion and Simulation of a scene
+//   scene_table_motion, scene_body_contacts, scene_planes: the parts it is made of
+//   contact_step_estimate, energy_creation_diagnosis, energy_loss_warning: when a run cannot be trusted
+//
+// The contact law and the linear solver are compile-time policies; the runner (runner.hpp) picks
+// them from the scene's runtime choice.
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "../excitation/excitation.hpp"
+#include "../contact/room_contact.hpp"
+#include "scene.hpp"
+#include "../core/simulation.hpp"
+
+namespace furniture_fem {
+
+namespace detail {
+
+inline Record scene_record(const SceneSpec& s, const std::string& file, const char* axis) {
+  const auto& g = s.ground_motion;
+  const std::string path = s.resolve(file);
+  if (path.empty())
+    throw InputError(s.source, 0, std::string("ground_motion.file_") + axis, "no record file given for this axis");
+  if (!std::filesystem::exists(path))
+    throw InputError(s.source, 0, std::string("ground_motion.file_") + axis, "record file not found: " + path);
+  ReadOptions ro;
+  if (g.units) ro.unit = *g.units == AccelerationUnits::g ? Unit::g : *g.units == AccelerationUnits::gal ? Unit::gal : Unit::m_s2;
+  else if (g.format == RecordFormat::columns) ro.unit = Unit::gal;
+  if (g.dt) ro.dt = *g.dt;
+  Format f = Format::automatic;
+  switch (g.format) {
+    case RecordFormat::at2: f = Format::peer_at2; break;
+    case RecordFormat::knet: f = Format::knet; break;
+    case RecordFormat::jma_csv: f = Format::jma_csv; break;
+    case RecordFormat::columns: f = Format::columns; break;
+  }
+  return read_record(path, f, ro);
+}
+
+// Window, low-pass and scale one component; the run's time 0 is the window's start.
+inline Record process_record(Record r, const GroundMotionSpec& g) {
+  if (g.lowpass_hz > 0 && g.lowpass_hz < 0.5 / r.dt) r = low_pass(r, g.lowpass_hz);
+  const double t0 = std::max(g.window_start, r.t0);
+  const double t1 = g.window_end ? std::min(*g.window_end, r.t_end()) : r.t_end();
+  if (t0 > 0 || t1 < r.t_end()) r = window(r, t0, t1, 0.0);
+  r.t0 = 0;
+  return r.scaled(g.level);
+}
+
+}  // namespace detail
+
+// The shake table's acceleration for a scene (m/s^2, table axes), as the scene asks for it.
+inline TableMotion scene_table_motion(const SceneSpec& s) {
+  const auto& g = s.ground_motion;
+  const bool three_d = g.dimensions == MotionDimensions::three_d;
+  if (g.source == MotionSource::synthetic) {
+    TableMotion m = default_table_motion(g.seed);
+    // Scale so the X component's peak is the requested PGA; Y and Z keep their ratios to X.
+    const double k = g.pga / std::max(m.x.peak(), 1e-12);
+    m = m.scaled(k * g.level);
+    if (!three_d) m.has_y = m.has_z = false;
+    return m;
+  }
+  if (g.format == RecordFormat::jma_csv) {
+    ReadOptions ro;
+    const auto c = read_jma_csv(s.resolve(g.file_x));
+    if (!three_d) return TableMotion::one_d(detail::process_record(c[0], g));
+    return TableMotion::three_d(detail::process_record(c[0], g), detail::process_record(c[1], g),
+                                detail::process_record(c[2], g));
+  }
+  Record x = detail::process_record(detail::scene_record(s, g.file_x, "x"), g);
+  if (!three_d) return TableMotion::one_d(std::move(x));
+  Record y = detail::process_record(detail::scene_record(s, g.file_y, "y"), g);
+  Record z = detail::process_record(detail::scene_record(s, g.file_z, "z"), g);
+  return TableMotion::three_d(std::move(x), std::move(y), std::move(z));
+}
+
+// Contact parameters of each body from its item's (Table 4 or rule) values and the scene's overrides.
+inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Model& model,
+                                                    const std::vector<ItemInfo>& items) {
+  std::vector<BodyContact> out(model.num_bodies());
+  const auto apply = [&](ContactParams& p, const ContactOverrides& o) {
+    if (o.alpha_kgf) p.alpha = *o.alpha_kgf * newtons_per_kgf;
+    if (o.dc_kgf) p.Dc = *o.dc_kgf * newtons_per_kgf;
+    if (o.q) p.q = *o.q;
+    if (o.mu) p.mu = p.mu_long = p.mu_short = *o.mu;
+    if (o.mu_long) p.mu_long = *o.mu_long;
+    if (o.mu_short) p.mu_short = *o.mu_short;
+  };
+  for (const auto& it : items) {
+    BodyContact bc;
+    const ItemContact& c = it.contact;
+    ContactParams base;
+    base.alpha = c.alpha;
+    base.Dc = c.Dc;
+    base.q = c.q;
+    base.v_reg = s.contact.velocity_regularisation;
+    // Linear and Hunt-Crossley springs get the paper penalty's stiffness at onset: alpha / L per
+    // contact with L = 25 mm (half the 50 mm member width); the tangential spring of the stick-slip
+    // law is as stiff; critical-ish damping for a node of ~0.1 kg.
+    base.k_lin = c.alpha / 0.025;
+    base.c_lin = 2.0 * std::sqrt(base.k_lin * 0.1);
+    base.k_hc = base.k_lin / std::sqrt(0.025);
+    base.hc_damping = 0.5;
+    base.k_t = base.k_lin;
+    bc.floor = base;
+    bc.floor.mu = c.mu_floor_long;
+    bc.floor.mu_long = c.mu_floor_long;
+    bc.floor.mu_short = c.mu_floor_short;
+    bc.wall = base;
+    bc.wall.mu = bc.wall.mu_long = bc.wall.mu_short = c.mu_wall;
+    bc.item = base;
+    bc.item.mu = bc.item.mu_long = bc.item.mu_short = c.mu_item;
+    apply(bc.floor, s.contact.floor);
+    apply(bc.wall, s.contact.wall);
+    apply(bc.item, s.contact.item);
+    if (s.contact.floor.stiffness) bc.floor.k_lin = bc.floor.k_t = *s.contact.floor.stiffness;
+    if (s.contact.floor.damping) bc.floor.c_lin = *s.contact.floor.damping;
+    bc.long_axis_node_a = it.long_axis_nodes[0];
+    bc.long_axis_node_b = it.long_axis_nodes[1];
+    bc.caster_nodes = it.caster_nodes;
+    out.at(it.body) = bc;
+  }
+  return out;
+}
+
+inline std::vector<RigidPlane> scene_planes(const SceneSpec& s) {
+  std::vector<RigidPlane> planes;
+  RigidPlane floor;
+  floor.point = Vec3(0, 0, s.table.floor_z);
+  floor.normal = Vec3::UnitZ();
+  planes.push_back(floor);
+  for (const auto& w : s.walls) {
+    RigidPlane p;
+    p.normal = w.normal.normalized();
+    p.point = w.point + Vec3(0, 0, 0.5 * w.height);
+    p.axis_u = Vec3::UnitZ().cross(p.normal).normalized();
+    p.axis_v = Vec3::UnitZ();
+    p.half_u = 0.5 * w.width;
+    p.half_v = 0.5 * w.height;
+    p.is_wall = true;
+    planes.push_back(p);
+  }
+  return planes;
+}
+
+// A node-mass estimate of the largest stable time step of the contact penalty, which the solver
+// treats explicitly (contact forces are not in the effective matrix): a floor node of mass m on the
+// penalty spring alpha / L is stable for dt below 2 sqrt(m L / alpha). Conservative, since the
+// structure around a node adds to its mass (the paper's penalties run stably at dt = 5 ms).
+struct ContactStepEstimate {
+  double dt = std::numeric_limits<double>::infinity();
+  std::string item;  // the item whose floor nodes give the estimate
+};
+template <class Sim>
+ContactStepEstimate contact_step_estimate(const Sim& sim, const Model& model, const std::vector<ItemInfo>& items,
+                                          const std::vector<BodyContact>& contacts) {
+  std::vector<double> half(model.num_nodes(), std::numeric_limits<double>::infinity());
+  for (int e = 0; e < model.num_elements(); ++e)
+    for (int n : {model.elements()[e].n1, model.elements()[e].n2})
+      half[n] = std::min(half[n], 0.5 * model.section_of(e).contact_width());
+  ContactStepEstimate est;
+  for (const auto& it : items) {
+    const double alpha = contacts.at(it.body).floor.alpha;
+    if (!(alpha > 0)) continue;
+    for (int n : it.bottom_nodes) {
+      const double d = 2.0 * std::sqrt(sim.nodal_mass(n) * half[n] / alpha);
+      if (d < est.dt) est = {d, it.name};
+    }
+  }
+  return est;
+}
+
+// Empty while the energy ledger shows no energy created beyond `limit` times its scale; otherwise
+// why the run cannot be trusted and what to change. Penalty contact can only give back what it
+// stored (a little, unless items start interpenetrated), so net positive contact work means the
+// explicit contact is pumping energy in; a positive imbalance means the time integration made it.
+inline std::string energy_creation_diagnosis(const EnergyLedger& E, double dt, double limit,
+                                             const ContactStepEstimate& est) {
+  if (!(limit > 0)) return {};
+  const double scale = E.scale(), imbalance = E.imbalance();
+  const bool by_contact = E.contact_work > limit * scale, by_integrator = imbalance > limit * scale;
+  if (!by_contact && !by_integrator) return {};
+  const auto fmt = [](double v) {
+    std::ostringstream o;
+    o.precision(3);
+    o << v;
+    return o.str();
+  };
+  std::string why = "energy is being created: ";
+  if (by_contact)
+    why += "the contact forces have done " + fmt(E.contact_work) + " J of net positive work (" +
+           fmt(100 * E.contact_work / scale) + " % of the energy ledger's scale, " + fmt(scale) + " J)";
+  else
+    why += "the energy ledger's imbalance is +" + fmt(imbalance) + " J (" + fmt(100 * imbalance / scale) +
+           " % of its scale, " + fmt(scale) + " J)";
+  why += ", more than the " + fmt(100 * limit) + " % a run may create (RunOptions::energy_creation_limit). ";
+  if (dt > est.dt)
+    why += "The contact penalty is too stiff for the time step: dt = " + fmt(1e3 * dt) +
+           " ms exceeds the explicit contact's stable step, estimated at " + fmt(1e3 * est.dt) + " ms for item '" +
+           est.item + "' (2 sqrt(m L / alpha) over its floor nodes); reduce dt or the penalty alpha_kgf.";
+  else
+    why += "dt = " + fmt(1e3 * dt) + " ms is within the explicit contact's estimated stable step (" +
+           fmt(1e3 * est.dt) + " ms, item '" + est.item +
+           "'): items starting interpenetrated (the penalty releases the energy stored in the overlap) are the "
+           "likely cause; check the placement, or reduce dt or the penalty alpha_kgf.";
+  return why;
+}
+
+// The warning a completed run carries when the ledger lost more than `limit` of its scale; empty if not.
+inline std::string energy_loss_warning(const EnergyLedger& E, double dt, double limit, const ContactStepEstimate& est) {
+  const double scale = E.scale(), imbalance = E.imbalance();
+  if (!(limit > 0) || !(-imbalance > limit * scale)) return {};
+  std::ostringstream o;
+  o.precision(3);
+  o << "warning: the energy ledger does not close: " << -imbalance << " J (" << 100 * -imbalance / scale
+    << " % of its scale, " << scale << " J) lost beyond what contact, damping and plastic hinges account for, "
+    << "more than the " << 100 * limit << " % (RunOptions::energy_loss_warning) a trusted run may lose. ";
+  if (dt > est.dt)
+    o << "The contact penalty is too stiff for the time step: dt = " << 1e3 * dt
+      << " ms exceeds the explicit contact's stable step, estimated at " << 1e3 * est.dt << " ms for item '" << est.item
+      << "'; reduce dt or the penalty alpha_kgf.";
+  else
+    o << "Impacts (items landing or striking each other) lose energy with the carried-over penalty contact at "
+         "this dt (docs/performance.md, stability); a smaller dt reduces the loss.";
+  return o.str();
+}
+
+// A scene turned into a composed solver: the model, its items, the table motion and the simulation
+// (owned here so the model outlives the simulation that refers to it). Fidelity per item: "rigid"
+// items are solved as rigid bodies; "auto" items are rigid unless the scene asks for their sectional
+// forces (model only what the scene needs); "full" and "coarse" are finite-element bodies. The element
+// policy is a compile-time choice (the scene file always means ASI-Gauss; studies swap it here).
+template <class Law, class Solver, class Element = AsiGaussTimoshenko>
+struct SceneSimulation {
+  using Sim = Simulation<Element, RuntimeIntegrator, Solver, RoomContact<Law>>;
+  std::unique_ptr<Model> model = std::make_unique<Model>();
+  std::vector<ItemInfo> items;
+  TableMotion motion;
+  RuntimeIntegrator integrator;
+  std::unique_ptr<Sim> sim;
+  std::vector<int> rigid_bodies;
+
+  // refresh_interval 0: the scene's (SceneSpec::refresh_every, in steps); threads 0: all hardware threads.
+  explicit SceneSimulation(const SceneSpec& spec, int refresh_interval = 0, int threads = 0) {
+    items = build_scene(spec, *model);
+    motion = scene_table_motion(spec);
+    RoomContact<Law> contact(*model, scene_body_contacts(spec, *model, items), scene_planes(spec));
+    // Obstacle placement (ObstacleSpec): file units times `scale`, turned by `yaw_deg` about z, the
+    // file's origin moved to `position`.
+    for (const auto& ob : spec.obstacles) {
+      TriangleMesh mesh = read_triangle_mesh(spec.resolve(ob.file));
+      const Mat3 R = Eigen::AngleAxisd(ob.yaw_deg * std::numbers::pi / 180.0, Vec3::UnitZ()).toRotationMatrix();
+      for (Vec3& v : mesh.vertices) v = R * (ob.scale * v) + ob.position;
+      contact.add_obstacle(MeshObstacle(std::move(mesh), spec.resolve(ob.file)));
+    }
+    switch (spec.integrator.scheme) {
+      case IntegratorKind::paper_newmark: integrator = RuntimeIntegrator::from(Newmark::paper()); break;
+      case IntegratorKind::average_acceleration:
+        integrator = RuntimeIntegrator::from(Newmark::average_acceleration());
+        break;
+      case IntegratorKind::generalized_alpha:
+        integrator = RuntimeIntegrator::from(GeneralizedAlpha{spec.integrator.rho_inf});
+        break;
+    }
+    integrator.mode = spec.integrator.iterate_to_equilibrium ? EquilibriumMode::iterate : EquilibriumMode::carry_over;
+    SimulationOptions so;
+    so.dt = spec.dt;
+    so.refresh_interval = refresh_interval > 0 ? refresh_interval : spec.refresh_interval_steps();
+    so.threads = threads;
+    sim = std::make_unique<Sim>(*model, integrator, so, std::move(contact));
+    const TableMotion* m = &motion;
+    sim->set_table_acceleration([m](double t) { return m->at(t); });
+    for (size_t i = 0; i < items.size(); ++i) {
+      bool rigid = items[i].fidelity == Fidelity::rigid;
+      if (items[i].fidelity == Fidelity::automatic) {
+        rigid = true;
+        const std::string item_name = items[i].name;
+        for (const auto& r : spec.outputs.sectional_forces)
+          if (r.item == item_name) rigid = false;
+      }
+      if (rigid) {
+        sim->set_rigid(items[i].body);
+        rigid_bodies.push_back(items[i].body);
+      }
+    }
+  }
+};
+
+namespace detail {
+
+// Best rigid rotation of a body from its initial to its current nodes (for tilt and final state).
+template <class Sim>
+Mat3 body_rotation_of(const Sim& sim, const Model& model, int body, Vec3* centroid_shift = nullptr) {
+  const auto& nodes = model.body(body).nodes;
+  Vec3 Xc = Vec3::Zero(), xc = Vec3::Zero();
+  for (int n : nodes) {
+    Xc += model.node(n).X;
+    xc += sim.position(n);
+  }
+  Xc /= double(nodes.size());
+  xc /= double(nodes.size());
+  if (centroid_shift) *centroid_shift = xc - Xc;
+  return best_rotation(
+      static_cast<int>(nodes.size()),
+      [&](int i) { return std::pair<Vec3, Vec3>(model.node(nodes[i]).X, sim.position(nodes[i])); }, Xc, xc);
+}
+
+inline double tilt_of(const Mat3& Q) {
+  return std::acos(std::clamp((Q * Vec3::UnitZ()).z(), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+}
+
+}  // namespace detail
+
+}  // namespace furniture_fem
