@@ -109,7 +109,7 @@ TEST_CASE("baseline_correct: a polynomial trend of the given order is removed ex
   // zero_final_velocity: the trapezoid velocity ends at 0.
   const auto z = furniture_fem::baseline_correct(mixed, 1, true);
   CHECK(std::abs(furniture_fem::integrate(z).vel.back()) < 1e-13);
-  CHECK_THROWS_AS(furniture_fem::baseline_correct(mixed, 3), std::invalid_argument);
+  CHECK_THROWS_AS(furniture_fem::baseline_correct(mixed, 3), furniture_fem::InputError);
 }
 
 TEST_CASE("low_pass 10 Hz, zero phase: 2 Hz passes (|H|^2 = 1/(1 + (f/fc)^16) ~ 1), 30 Hz is cut, fc gives 1/2",
@@ -142,7 +142,7 @@ TEST_CASE("low_pass 10 Hz, zero phase: 2 Hz passes (|H|^2 = 1/(1 + (f/fc)^16) ~ 
   // A constant passes unchanged (unit DC gain and steady-state start).
   const auto c = make_record(dt, 100, [](double) { return 3.0; });
   for (double a : furniture_fem::low_pass(c, 10.0).acc) REQUIRE(a == Approx(3.0).epsilon(1e-12));
-  CHECK_THROWS_AS(furniture_fem::low_pass(s2, 100.0), std::invalid_argument);  // at Nyquist
+  CHECK_THROWS_AS(furniture_fem::low_pass(s2, 100.0), furniture_fem::InputError);  // at Nyquist
 }
 
 TEST_CASE("window: kept samples in [t_start, t_end], cosine taper 0.5 (1 - cos(pi d / taper))", "[excitation][processing]") {
@@ -160,7 +160,7 @@ TEST_CASE("window: kept samples in [t_start, t_end], cosine taper 0.5 (1 - cos(p
   const auto cut = furniture_fem::window(r, 0.005, 0.5);
   CHECK(cut.size() == 50);
   CHECK(cut.t0 == Approx(0.01));
-  CHECK_THROWS_AS(furniture_fem::window(r, 20.0, 30.0), std::invalid_argument);
+  CHECK_THROWS_AS(furniture_fem::window(r, 20.0, 30.0), furniture_fem::InputError);
 }
 
 TEST_CASE("integrate (trapezoid): constant a gives v = a t and d = a t^2 / 2 exactly", "[excitation][processing]") {

@@ -118,5 +118,5 @@ TEST_CASE("log_periods: geometric from t_min to t_max, both included", "[excitat
   CHECK(p.front() == 0.02);
   CHECK(p.back() == 5.0);
   for (std::size_t i = 1; i < p.size(); ++i) CHECK(p[i] / p[i - 1] == Approx(std::pow(250.0, 0.1)).epsilon(1e-12));
-  CHECK_THROWS_AS(furniture_fem::log_periods(0.0, 1.0, 5), std::invalid_argument);
+  CHECK_THROWS_AS(furniture_fem::log_periods(0.0, 1.0, 5), furniture_fem::InputError);
 }
