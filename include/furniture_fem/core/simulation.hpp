@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <chrono>
+#include <exception>
 #include <functional>
 #include <memory>
 #include <string>
@@ -368,17 +369,24 @@ class Simulation {
 
  private:
   // Statics for the life of the scope: the loads at the load factor, no inertia in the matrices. Its
-  // end, however reached (an exception included), restores the mode. After a static solve
-  // (restart_dynamics) the next dynamic step starts again (start()): it assembles the effective
-  // (dynamic) matrix in place of the static tangent left flagged as assembled, and sets the initial
-  // accelerations, forces and energy from the state statics left.
+  // end, however reached, restores the mode. After a static solve (restart_dynamics) the next dynamic
+  // step starts again (start()): it assembles the effective (dynamic) matrix in place of the static
+  // tangent left flagged as assembled, and sets the initial accelerations, forces and energy from the
+  // state statics left. Left by an exception, every body's matrix is refreshed too: a body solved
+  // before the failure holds a static factorisation its next step would otherwise reuse.
   class StaticScope {
    public:
     enum Exit { keep_dynamics, restart_dynamics };
-    StaticScope(Simulation& sim, Exit exit) : sim_(sim), saved_(sim.static_), exit_(exit) { sim.static_ = true; }
+    StaticScope(Simulation& sim, Exit exit)
+        : sim_(sim), saved_(sim.static_), exit_(exit), exceptions_(std::uncaught_exceptions()) {
+      sim.static_ = true;
+    }
     ~StaticScope() {
       sim_.static_ = saved_;
-      if (exit_ == restart_dynamics) sim_.started_ = false;
+      if (exit_ == keep_dynamics) return;
+      sim_.started_ = false;
+      if (std::uncaught_exceptions() > exceptions_)
+        for (auto& bs : sim_.systems_) bs.needs_refresh = true;
     }
     StaticScope(const StaticScope&) = delete;
     StaticScope& operator=(const StaticScope&) = delete;
@@ -387,6 +395,7 @@ class Simulation {
     Simulation& sim_;
     bool saved_;
     Exit exit_;
+    int exceptions_;
   };
 
   // What a step scheme (CarryOverScheme, IteratedScheme in integrators.hpp) drives: the sweeps over
