@@ -1,6 +1,7 @@
 #pragma once
 // furniture_fem/core.hpp: the core module (model, elements, integrators, linear solvers, simulation, modal analysis; Eigen only).
 #include "core/errors.hpp"
+#include "core/text.hpp"
 #include "core/model.hpp"
 #include "core/elements.hpp"
 #include "core/integrators.hpp"

@@ -289,3 +289,36 @@ TEST_CASE("a fixed-fixed beam under a central load collapses at 8 Mp / L", "[sta
   CHECK(hinges <= 4);
   CHECK(std::abs(sim.displacement(d).x()) < 1e-3 * L);  // the slider moved little: no catenary
 }
+
+// solve_static switches the simulation to statics for its duration. An exception inside it (here: a
+// rigid body, which statics cannot solve) must not leave it there: the next dynamic step is the step
+// a fresh simulation takes.
+TEST_CASE("an exception inside solve_static leaves the simulation dynamic", "[statics]") {
+  auto build = [](Model& model) {
+    Cantilever c(1.0, 4, true);
+    model = c.model;
+    const int block = model.add_body("block");
+    const int sec = model.add_section(Section::hollow_rectangle(0.05, 0.03, 0.002, "tube"));
+    const int mat = model.add_material(Material{});
+    const int a = model.add_node({0, 1, 0.5}, block), b = model.add_node({0.5, 1, 0.5}, block);
+    MemberOptions o;
+    o.elements = 2;
+    o.pairs = true;
+    o.y_ref = Vec3::UnitY();
+    model.add_member("bar", a, b, sec, mat, o);
+    return block;
+  };
+  Model model;
+  const int block = build(model);
+  Simulation<AsiGaussTimoshenko> thrown(model);
+  thrown.set_rigid(block);
+  CHECK_THROWS_AS(thrown.solve_static(), SimulationError);
+  Simulation<AsiGaussTimoshenko> fresh(model);
+  fresh.set_rigid(block);
+  REQUIRE_NOTHROW(thrown.step());
+  fresh.step();
+  for (int n = 0; n < model.num_nodes(); ++n) {
+    CHECK(thrown.position(n) == fresh.position(n));
+    CHECK(thrown.velocity(n) == fresh.velocity(n));
+  }
+}

@@ -26,7 +26,7 @@ void require_input_error(F&& f, const std::string& path, long line, const std::s
   const std::string file = path.substr(path.find_last_of('/') + 1);
   try {
     f();
-  } catch (const ffem::InputError& e) {
+  } catch (const furniture_fem::InputError& e) {
     const std::string what = e.what();
     INFO("what(): " << what);
     CHECK(what.find(file) != std::string::npos);
@@ -106,8 +106,8 @@ TEST_CASE("PEER AT2 (JMA Kobe header, NPTS = 7500, DT = .020): a = value_g * 9.8
     expect.push_back(exact * 9.80665);
   }
   const std::string p = write_file("kobe.AT2", text);
-  REQUIRE(ffem::detect_format(p) == ffem::Format::peer_at2);
-  const ffem::Record r = ffem::read_record(p);
+  REQUIRE(furniture_fem::detect_format(p) == furniture_fem::Format::peer_at2);
+  const furniture_fem::Record r = furniture_fem::read_record(p);
   CHECK(r.name == "Kobe Japan, 1/16/1995, KJMA, 0");
   CHECK(r.dt == Approx(0.02).epsilon(1e-15));
   CHECK(r.t0 == 0.0);
@@ -127,7 +127,7 @@ TEST_CASE("PEER AT2 older header '7 0.0200 NPTS, DT' and run-together Fortran nu
                                    "    7    0.0200    NPTS, DT\n"
                                    "  .1000000E-01-.2000000E-01  .3000000E-01  .4000000E+00  .5000000E-01\n"
                                    "  -.6000000E-01   .7000000D-02\n");
-  const ffem::Record r = ffem::read_peer_at2(p);
+  const furniture_fem::Record r = furniture_fem::read_peer_at2(p);
   REQUIRE(r.size() == 7);
   CHECK(r.dt == 0.02);
   CHECK(r.acc[1] == Approx(-0.02 * 9.80665));
@@ -148,8 +148,8 @@ TEST_CASE("K-NET/KiK-net ASCII: a = (count - mean) * 3920/6182761 gal * 0.01 m/s
     mean += double(counts[i]) / 16.0;
   }
   const std::string p = write_file("TCGH161103111446.NS2", text);
-  REQUIRE(ffem::detect_format(p) == ffem::Format::knet);
-  const ffem::Record r = ffem::read_record(p);
+  REQUIRE(furniture_fem::detect_format(p) == furniture_fem::Format::knet);
+  const furniture_fem::Record r = furniture_fem::read_record(p);
   CHECK(r.name == "TCGH16 N-S");
   CHECK(r.dt == Approx(0.01).epsilon(1e-15));
   REQUIRE(r.size() == 16);
@@ -158,7 +158,7 @@ TEST_CASE("K-NET/KiK-net ASCII: a = (count - mean) * 3920/6182761 gal * 0.01 m/s
   for (double a : r.acc) sum += a;
   CHECK(std::abs(sum) < 1e-12);  // mean removed
   // Without the mean removal the raw counts are scaled as they are.
-  const ffem::Record raw = ffem::read_knet(p, false);
+  const furniture_fem::Record raw = furniture_fem::read_knet(p, false);
   CHECK(raw.acc[15] == Approx(-16000.0 * 3920.0 / 6182761.0 * 0.01).epsilon(1e-14));
 }
 
@@ -168,8 +168,8 @@ TEST_CASE("JMA CSV: three components NS, EW, UD in gal -> m/s^2 (* 0.01), dt = 1
                                                        "-0.5,1.25,3.0\n"
                                                        "818.1,-617.5,332.4\n"
                                                        "2.0,-1.0,0.25\n");
-  REQUIRE(ffem::detect_format(p) == ffem::Format::jma_csv);
-  const auto c = ffem::read_jma_csv(p);
+  REQUIRE(furniture_fem::detect_format(p) == furniture_fem::Format::jma_csv);
+  const auto c = furniture_fem::read_jma_csv(p);
   for (const auto& r : c) {
     REQUIRE(r.size() == 3);
     CHECK(r.dt == Approx(0.01).epsilon(1e-15));
@@ -179,22 +179,22 @@ TEST_CASE("JMA CSV: three components NS, EW, UD in gal -> m/s^2 (* 0.01), dt = 1
   CHECK(c[1].acc[1] == Approx(-6.175).epsilon(1e-14));
   CHECK(c[2].acc[1] == Approx(3.324).epsilon(1e-14));
   CHECK(c[2].acc[2] == Approx(0.0025).epsilon(1e-14));
-  ffem::ReadOptions ew;
+  furniture_fem::ReadOptions ew;
   ew.component = 1;
-  CHECK(ffem::read_record(p, ffem::Format::automatic, ew).acc[0] == Approx(0.0125).epsilon(1e-14));
+  CHECK(furniture_fem::read_record(p, furniture_fem::Format::automatic, ew).acc[0] == Approx(0.0125).epsilon(1e-14));
 
   // A UTF-8 BOM and CRLF line ends (CSV exports on Windows) change nothing.
   std::string crlf = "\xEF\xBB\xBF" + std::string(kJmaHeader) + "NS,EW,UD\n-0.5,1.25,3.0\n";
   for (std::size_t k = crlf.find('\n'); k != std::string::npos; k = crlf.find('\n', k + 2)) crlf.insert(k, "\r");
   const std::string w = write_file("kobe_jma_crlf.csv", crlf);
-  REQUIRE(ffem::detect_format(w) == ffem::Format::jma_csv);
-  const auto cw = ffem::read_jma_csv(w);
+  REQUIRE(furniture_fem::detect_format(w) == furniture_fem::Format::jma_csv);
+  const auto cw = furniture_fem::read_jma_csv(w);
   CHECK(cw[0].name == "JMA 637 NS");
   CHECK(cw[1].acc[0] == Approx(0.0125).epsilon(1e-14));
 
   // Columns in another order are mapped by name.
   const std::string q = write_file("jma_order.csv", std::string(kJmaHeader) + " UD, NS, EW\n1,2,3\n");
-  const auto d = ffem::read_jma_csv(q);
+  const auto d = furniture_fem::read_jma_csv(q);
   CHECK(d[0].acc[0] == Approx(0.02));
   CHECK(d[1].acc[0] == Approx(0.03));
   CHECK(d[2].acc[0] == Approx(0.01));
@@ -206,10 +206,10 @@ TEST_CASE("columns: (time, gal) pairs give dt = t1 - t0 and t0 = first time; val
                                    "        0.04000      -10.80000\n"
                                    "        0.06000      -10.10000\n"
                                    "        0.08000       -8.80000\n");
-  REQUIRE(ffem::detect_format(p) == ffem::Format::columns);
-  ffem::ReadOptions gal;
-  gal.unit = ffem::Unit::gal;
-  const ffem::Record r = ffem::read_record(p, ffem::Format::automatic, gal);
+  REQUIRE(furniture_fem::detect_format(p) == furniture_fem::Format::columns);
+  furniture_fem::ReadOptions gal;
+  gal.unit = furniture_fem::Unit::gal;
+  const furniture_fem::Record r = furniture_fem::read_record(p, furniture_fem::Format::automatic, gal);
   REQUIRE(r.size() == 4);
   CHECK(r.dt == Approx(0.02).epsilon(1e-14));
   CHECK(r.t0 == Approx(0.02).epsilon(1e-14));
@@ -218,17 +218,17 @@ TEST_CASE("columns: (time, gal) pairs give dt = t1 - t0 and t0 = first time; val
   CHECK(r.value_at(0.03) == Approx(-0.061).epsilon(1e-12));
 
   // Units: g and m/s^2.
-  ffem::ReadOptions in_g;
-  in_g.unit = ffem::Unit::g;
-  CHECK(ffem::read_columns(p, in_g).acc[0] == Approx(-1.4 * 9.80665).epsilon(1e-14));
-  CHECK(ffem::read_columns(p).acc[0] == Approx(-1.4).epsilon(1e-14));
+  furniture_fem::ReadOptions in_g;
+  in_g.unit = furniture_fem::Unit::g;
+  CHECK(furniture_fem::read_columns(p, in_g).acc[0] == Approx(-1.4 * 9.80665).epsilon(1e-14));
+  CHECK(furniture_fem::read_columns(p).acc[0] == Approx(-1.4).epsilon(1e-14));
 
   // A single column needs dt.
   const std::string single = write_file("single.txt", "# one value per line\n0.5\n0.25\n");
-  require_input_error([&] { (void)ffem::read_columns(single); }, single, 2, "columns");
-  ffem::ReadOptions dt;
+  require_input_error([&] { (void)furniture_fem::read_columns(single); }, single, 2, "columns");
+  furniture_fem::ReadOptions dt;
   dt.dt = 0.005;
-  const ffem::Record s = ffem::read_columns(single, dt);
+  const furniture_fem::Record s = furniture_fem::read_columns(single, dt);
   CHECK(s.size() == 2);
   CHECK(s.dt == 0.005);
 }
@@ -240,27 +240,27 @@ TEST_CASE("columns: comments, a leading '0.02 0.50' line skipped with skip_lines
                                    "0.02 0.50\n"
                                    " -0.3289795     -0.3588867     -0.4187012     -0.3588867     -0.1794434    \n"
                                    " -818.0220      0.7476807\n");
-  REQUIRE(ffem::detect_format(p) == ffem::Format::columns);
-  ffem::ReadOptions o;
-  o.unit = ffem::Unit::gal;
+  REQUIRE(furniture_fem::detect_format(p) == furniture_fem::Format::columns);
+  furniture_fem::ReadOptions o;
+  o.unit = furniture_fem::Unit::gal;
   o.dt = 0.02;
   o.skip_lines = 3;
-  const ffem::Record r = ffem::read_record(p, ffem::Format::columns, o);
+  const furniture_fem::Record r = furniture_fem::read_record(p, furniture_fem::Format::columns, o);
   REQUIRE(r.size() == 7);
   CHECK(r.acc[0] == Approx(-0.003289795).epsilon(1e-14));
   CHECK(r.peak() == Approx(8.18022).epsilon(1e-14));
   CHECK(r.peak_time() == Approx(0.10).epsilon(1e-14));
   // The trap skip_lines avoids: without it "0.02 0.50" would be read as two samples.
   o.skip_lines = 0;
-  CHECK(ffem::read_record(p, ffem::Format::columns, o).size() == 9);
+  CHECK(furniture_fem::read_record(p, furniture_fem::Format::columns, o).size() == 9);
 }
 
 TEST_CASE("write_columns then read_columns gives the record back (17 significant digits)", "[excitation][readers]") {
-  ffem::Record r{"round trip", "test", 0.01, {0.1, -2.0 / 3.0, 1e-17, 9.80665, 0.0}, 1.5};
+  furniture_fem::Record r{"round trip", "test", 0.01, {0.1, -2.0 / 3.0, 1e-17, 9.80665, 0.0}, 1.5};
   const std::string p = tmp_path("roundtrip.txt");
-  ffem::write_columns(p, r);
-  REQUIRE(ffem::detect_format(p) == ffem::Format::columns);
-  const ffem::Record back = ffem::read_record(p);
+  furniture_fem::write_columns(p, r);
+  REQUIRE(furniture_fem::detect_format(p) == furniture_fem::Format::columns);
+  const furniture_fem::Record back = furniture_fem::read_record(p);
   CHECK(back.name == "excitation_roundtrip");
   REQUIRE(back.size() == r.size());
   for (std::size_t i = 0; i < r.size(); ++i) CHECK(back.acc[i] == r.acc[i]);
@@ -272,25 +272,25 @@ TEST_CASE("missing header: InputError names the file, the line and the missing f
   // AT2 whose NPTS/DT line is gone: line 4 is data.
   const std::string at2 = write_file("noheader.AT2", std::string(kKobeHeader) +
                                                          "  -.1416764E-03  -.1418977E-03  -.1421037E-03\n");
-  require_input_error([&] { (void)ffem::read_peer_at2(at2); }, at2, 4, "NPTS");
+  require_input_error([&] { (void)furniture_fem::read_peer_at2(at2); }, at2, 4, "NPTS");
   const std::string short_at2 = write_file("short.AT2", "PEER NGA STRONG MOTION DATABASE RECORD\n");
-  require_input_error([&] { (void)ffem::read_record(short_at2); }, short_at2, 4, "NPTS");
+  require_input_error([&] { (void)furniture_fem::read_record(short_at2); }, short_at2, 4, "NPTS");
 
   // K-NET without its Scale Factor line: reported at "Memo." (line 16 once the line is removed).
   std::string knet = kKnetHeader;
   knet.erase(knet.find("Scale Factor"), std::string("Scale Factor      3920(gal)/6182761\n").size());
   const std::string kp = write_file("noscale.EW", knet + "  -19885  -19862\n");
-  require_input_error([&] { (void)ffem::read_knet(kp); }, kp, 16, "Scale Factor");
+  require_input_error([&] { (void)furniture_fem::read_knet(kp); }, kp, 16, "Scale Factor");
 
   // JMA without SAMPLING RATE: reported at the column line (line 6 once the line is removed).
   std::string jma = kJmaHeader;
   jma.erase(jma.find("SAMPLING RATE"), std::string("SAMPLING RATE= 100Hz\n").size());
   const std::string jp = write_file("norate.csv", jma + "NS,EW,UD\n1,2,3\n");
-  require_input_error([&] { (void)ffem::read_jma_csv(jp); }, jp, 6, "SAMPLING RATE");
+  require_input_error([&] { (void)furniture_fem::read_jma_csv(jp); }, jp, 6, "SAMPLING RATE");
 
   // JMA rows before the NS,EW,UD column line.
   const std::string jc = write_file("nocols.csv", std::string(kJmaHeader) + "1,2,3\n");
-  require_input_error([&] { (void)ffem::read_jma_csv(jc); }, jc, 7, "NS,EW,UD");
+  require_input_error([&] { (void)furniture_fem::read_jma_csv(jc); }, jc, 7, "NS,EW,UD");
 }
 
 TEST_CASE("non-numeric sample: InputError at its line, field 'sample k' (or the column name)", "[excitation][errors]") {
@@ -298,34 +298,34 @@ TEST_CASE("non-numeric sample: InputError at its line, field 'sample k' (or the 
                                                       "NPTS =   7 , DT =   .020 SEC ,\n"
                                                       "  -.1416764E-03  -.1418977E-03  -.1421037E-03  -.1423125E-03  -.1425214E-03\n"
                                                       "  -.1427419E-03  -.14x9308E-03\n");
-  require_input_error([&] { (void)ffem::read_peer_at2(at2); }, at2, 6, "sample 7");
+  require_input_error([&] { (void)furniture_fem::read_peer_at2(at2); }, at2, 6, "sample 7");
 
   const std::string knet = write_file("alpha.NS", std::string(kKnetHeader) + "  -19885  -19862  abc\n");
-  require_input_error([&] { (void)ffem::read_knet(knet); }, knet, 18, "sample 3");
+  require_input_error([&] { (void)furniture_fem::read_knet(knet); }, knet, 18, "sample 3");
 
   const std::string jma = write_file("alpha.csv", std::string(kJmaHeader) + "NS,EW,UD\n1,2,3\n1.0,abc,2\n");
-  require_input_error([&] { (void)ffem::read_jma_csv(jma); }, jma, 9, "EW");
+  require_input_error([&] { (void)furniture_fem::read_jma_csv(jma); }, jma, 9, "EW");
 
   const std::string cols = write_file("alpha.txt", "0.00 1.0\n0.01 2.O\n");
-  require_input_error([&] { (void)ffem::read_columns(cols); }, cols, 2, "acceleration");
+  require_input_error([&] { (void)furniture_fem::read_columns(cols); }, cols, 2, "acceleration");
 }
 
 TEST_CASE("NaN or inf sample: InputError at its line and field", "[excitation][errors]") {
   const std::string at2 = write_file("nan.AT2", std::string(kKobeHeader) +
                                                     "NPTS =   3 , DT =   .020 SEC ,\n"
                                                     "  -.1416764E-03            NaN  -.1421037E-03\n");
-  require_input_error([&] { (void)ffem::read_peer_at2(at2); }, at2, 5, "sample 2");
+  require_input_error([&] { (void)furniture_fem::read_peer_at2(at2); }, at2, 5, "sample 2");
   try {
-    (void)ffem::read_peer_at2(at2);
-  } catch (const ffem::InputError& e) {
+    (void)furniture_fem::read_peer_at2(at2);
+  } catch (const furniture_fem::InputError& e) {
     CHECK(std::string(e.what()).find("NaN") != std::string::npos);
   }
   const std::string cols = write_file("inf.txt", "0.00 1.0\n0.01 inf\n");
-  require_input_error([&] { (void)ffem::read_columns(cols); }, cols, 2, "acceleration");
+  require_input_error([&] { (void)furniture_fem::read_columns(cols); }, cols, 2, "acceleration");
   const std::string big = write_file("overflow.txt", "# overflow to inf\n1e999\n");
-  ffem::ReadOptions o;
+  furniture_fem::ReadOptions o;
   o.dt = 0.01;
-  require_input_error([&] { (void)ffem::read_columns(big, o); }, big, 2, "sample 1");
+  require_input_error([&] { (void)furniture_fem::read_columns(big, o); }, big, 2, "sample 1");
 }
 
 TEST_CASE("NPTS mismatch: too few samples at the NPTS line 4, too many where they start", "[excitation][errors]") {
@@ -333,39 +333,39 @@ TEST_CASE("NPTS mismatch: too few samples at the NPTS line 4, too many where the
       "  -.1416764E-03  -.1418977E-03  -.1421037E-03  -.1423125E-03  -.1425214E-03\n"
       "  -.1427419E-03  -.1429308E-03\n";
   const std::string few = write_file("few.AT2", std::string(kKobeHeader) + "NPTS =   8 , DT =   .020 SEC ,\n" + body);
-  require_input_error([&] { (void)ffem::read_peer_at2(few); }, few, 4, "NPTS");
+  require_input_error([&] { (void)furniture_fem::read_peer_at2(few); }, few, 4, "NPTS");
   const std::string many = write_file("many.AT2", std::string(kKobeHeader) + "NPTS =   6 , DT =   .020 SEC ,\n" + body);
-  require_input_error([&] { (void)ffem::read_peer_at2(many); }, many, 6, "NPTS");
+  require_input_error([&] { (void)furniture_fem::read_peer_at2(many); }, many, 6, "NPTS");
 }
 
 TEST_CASE("time not increasing (or not uniform) in (time, value) columns: InputError field 'time'", "[excitation][errors]") {
   const std::string p = write_file("repeat.txt", "# t a\n0.00 1.0\n0.02 2.0\n0.02 3.0\n0.04 4.0\n");
-  require_input_error([&] { (void)ffem::read_columns(p); }, p, 4, "time");
+  require_input_error([&] { (void)furniture_fem::read_columns(p); }, p, 4, "time");
   const std::string back = write_file("back.txt", "0.00 1.0\n0.02 2.0\n0.01 3.0\n");
-  require_input_error([&] { (void)ffem::read_columns(back); }, back, 3, "time");
+  require_input_error([&] { (void)furniture_fem::read_columns(back); }, back, 3, "time");
   const std::string gap = write_file("gap.txt", "0.00 1.0\n0.01 2.0\n0.03 3.0\n0.04 3.0\n0.05 3.0\n");
-  require_input_error([&] { (void)ffem::read_columns(gap); }, gap, 3, "time");
+  require_input_error([&] { (void)furniture_fem::read_columns(gap); }, gap, 3, "time");
 }
 
 TEST_CASE("unknown format: InputError at the first line that is neither a header nor numbers", "[excitation][errors]") {
   const std::string p = write_file("unknown.dat", "# exported by some tool\nHello, this is not a record\n1 2\n");
-  require_input_error([&] { (void)ffem::detect_format(p); }, p, 2, "format");
-  require_input_error([&] { (void)ffem::read_record(p); }, p, 2, "format");
+  require_input_error([&] { (void)furniture_fem::detect_format(p); }, p, 2, "format");
+  require_input_error([&] { (void)furniture_fem::read_record(p); }, p, 2, "format");
 }
 
 TEST_CASE("empty file: InputError at line 1, field 'file', from every reader", "[excitation][errors]") {
   const std::string p = write_file("empty.AT2", "");
-  require_input_error([&] { (void)ffem::detect_format(p); }, p, 1, "file");
-  require_input_error([&] { (void)ffem::read_record(p); }, p, 1, "file");
-  require_input_error([&] { (void)ffem::read_peer_at2(p); }, p, 1, "file");
-  require_input_error([&] { (void)ffem::read_knet(p); }, p, 1, "file");
-  require_input_error([&] { (void)ffem::read_jma_csv(p); }, p, 1, "file");
-  require_input_error([&] { (void)ffem::read_columns(p); }, p, 1, "file");
+  require_input_error([&] { (void)furniture_fem::detect_format(p); }, p, 1, "file");
+  require_input_error([&] { (void)furniture_fem::read_record(p); }, p, 1, "file");
+  require_input_error([&] { (void)furniture_fem::read_peer_at2(p); }, p, 1, "file");
+  require_input_error([&] { (void)furniture_fem::read_knet(p); }, p, 1, "file");
+  require_input_error([&] { (void)furniture_fem::read_jma_csv(p); }, p, 1, "file");
+  require_input_error([&] { (void)furniture_fem::read_columns(p); }, p, 1, "file");
   const std::string blank = write_file("blank.txt", "\n   \n\t\n");
-  require_input_error([&] { (void)ffem::read_record(blank); }, blank, 1, "file");
+  require_input_error([&] { (void)furniture_fem::read_record(blank); }, blank, 1, "file");
   // A file with only comments has no samples.
   const std::string comments = write_file("comments.txt", "# nothing\n; here\n");
-  CHECK_THROWS_AS(ffem::read_record(comments), ffem::InputError);
+  CHECK_THROWS_AS(furniture_fem::read_record(comments), furniture_fem::InputError);
   // A missing file.
-  CHECK_THROWS_AS(ffem::read_record(tmp_path("does_not_exist.AT2")), ffem::InputError);
+  CHECK_THROWS_AS(furniture_fem::read_record(tmp_path("does_not_exist.AT2")), furniture_fem::InputError);
 }

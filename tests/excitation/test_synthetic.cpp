@@ -11,14 +11,14 @@ constexpr double kPi = 3.14159265358979323846;
 }
 
 TEST_CASE("synthetic: same seed -> identical samples, different seed -> different", "[excitation][synthetic]") {
-  ffem::SyntheticOptions o;
+  furniture_fem::SyntheticOptions o;
   o.seed = 42;
-  const auto a = ffem::synthetic_motion(o);
-  const auto b = ffem::synthetic_motion(o);
+  const auto a = furniture_fem::synthetic_motion(o);
+  const auto b = furniture_fem::synthetic_motion(o);
   REQUIRE(a.size() == b.size());
   CHECK(a.acc == b.acc);  // bitwise
   o.seed = 43;
-  const auto c = ffem::synthetic_motion(o);
+  const auto c = furniture_fem::synthetic_motion(o);
   REQUIRE(c.size() == a.size());
   std::size_t same = 0;
   for (std::size_t i = 0; i < a.size(); ++i) same += a.acc[i] == c.acc[i];
@@ -27,13 +27,13 @@ TEST_CASE("synthetic: same seed -> identical samples, different seed -> differen
 }
 
 TEST_CASE("synthetic: PGA, duration and dt are the requested ones (n = duration/dt + 1 samples)", "[excitation][synthetic]") {
-  ffem::SyntheticOptions o;
+  furniture_fem::SyntheticOptions o;
   o.seed = 7;
   o.duration = 12.0;
   o.dt = 0.005;
   o.pga = 3.5;
   o.predominant_period = 0.3;
-  const auto r = ffem::synthetic_motion(o);
+  const auto r = furniture_fem::synthetic_motion(o);
   CHECK(r.dt == 0.005);
   CHECK(r.t0 == 0.0);
   CHECK(r.size() == 2401);
@@ -45,12 +45,12 @@ TEST_CASE("synthetic: PGA, duration and dt are the requested ones (n = duration/
 TEST_CASE("synthetic: starts and ends at zero acceleration, ends at rest at the start position (trapezoid)",
           "[excitation][synthetic]") {
   for (std::uint64_t seed : {1u, 2u, 3u}) {
-    ffem::SyntheticOptions o;
+    furniture_fem::SyntheticOptions o;
     o.seed = seed;
-    const auto r = ffem::synthetic_motion(o);
+    const auto r = furniture_fem::synthetic_motion(o);
     CHECK(r.acc.front() == 0.0);  // envelope (t/rise)^2 = 0 at t = 0
     CHECK(std::abs(r.acc.back()) < 1e-12);  // end taper reaches 0
-    const auto k = ffem::integrate(r);
+    const auto k = furniture_fem::integrate(r);
     double vmax = 0;
     for (double v : k.vel) vmax = std::max(vmax, std::abs(v));
     CHECK(std::abs(k.vel.back()) < 1e-12 * vmax);
@@ -59,7 +59,7 @@ TEST_CASE("synthetic: starts and ends at zero acceleration, ends at rest at the 
 }
 
 TEST_CASE("Envelope: (t/rise)^2, 1 in the strong phase, exp(-decay (t - rise - strong)), 0 at the end", "[excitation][synthetic]") {
-  const ffem::Envelope e;  // rise 1.5, strong 3.5, decay 0.6, end taper 0.5
+  const furniture_fem::Envelope e;  // rise 1.5, strong 3.5, decay 0.6, end taper 0.5
   CHECK(e(0.75, 10) == Approx(0.25));
   CHECK(e(3.0, 10) == 1.0);
   CHECK(e(6.0, 10) == Approx(std::exp(-0.6)));
@@ -71,13 +71,13 @@ TEST_CASE("Envelope: (t/rise)^2, 1 in the strong phase, exp(-decay (t - rise - s
 TEST_CASE("synthetic: the 5 % spectrum peaks near the predominant period (0.5 s), PSA/PGA 2-5", "[excitation][synthetic]") {
   // Not a closed form: a check of the character over a few seeds (with zeta_g = 0.3 the peaks of
   // single motions scatter over about 0.35-0.7 s).
-  const auto periods = ffem::log_periods(0.05, 3.0, 60);
+  const auto periods = furniture_fem::log_periods(0.05, 3.0, 60);
   double mean_peak_period = 0;
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
-    ffem::SyntheticOptions o;
+    furniture_fem::SyntheticOptions o;
     o.seed = seed;
-    const auto r = ffem::synthetic_motion(o);
-    const auto s = ffem::response_spectrum(r, periods);
+    const auto r = furniture_fem::synthetic_motion(o);
+    const auto s = furniture_fem::response_spectrum(r, periods);
     std::size_t k = 0;
     for (std::size_t i = 1; i < periods.size(); ++i)
       if (s.psa[i] > s.psa[k]) k = i;
@@ -93,13 +93,13 @@ TEST_CASE("synthetic: the 5 % spectrum peaks near the predominant period (0.5 s)
 
 TEST_CASE("near-fault pulse (Mavroeidis-Papageorgiou): v(t_peak) = A for nu = 0, v = 0 after the pulse",
           "[excitation][synthetic]") {
-  ffem::PulseOptions o;
+  furniture_fem::PulseOptions o;
   o.dt = 0.001;
   const double Tp = 1.1, A = 0.9;
-  const auto r = ffem::near_fault_pulse(Tp, A, o);
+  const auto r = furniture_fem::near_fault_pulse(Tp, A, o);
   const double t_peak = 0.5 * o.gamma * Tp;
   CHECK(r.duration() == Approx(2 * t_peak + 1.0).epsilon(1e-9));
-  const auto k = ffem::integrate(r);
+  const auto k = furniture_fem::integrate(r);
   const auto ip = static_cast<std::size_t>(std::lround(t_peak / o.dt));
   CHECK(k.vel[ip] == Approx(A).epsilon(1e-5));
   double vmax = 0;
@@ -119,7 +119,7 @@ TEST_CASE("near-fault pulse (Mavroeidis-Papageorgiou): v(t_peak) = A for nu = 0,
 }
 
 TEST_CASE("default_table_motion: 3-D, 10 s at dt 0.01, PGA X 8, Y 6, Z 3.3 m/s^2, reproducible", "[excitation][synthetic]") {
-  const auto m = ffem::default_table_motion();
+  const auto m = furniture_fem::default_table_motion();
   CHECK(m.is_3d());
   CHECK(m.has_y);
   CHECK(m.has_z);
@@ -132,8 +132,8 @@ TEST_CASE("default_table_motion: 3-D, 10 s at dt 0.01, PGA X 8, Y 6, Z 3.3 m/s^2
   CHECK(m.y.peak() == Approx(6.0).epsilon(1e-12));
   CHECK(m.z.peak() == Approx(3.3).epsilon(1e-12));
   CHECK(m.x.acc != m.y.acc);
-  CHECK(ffem::default_table_motion().x.acc == m.x.acc);
-  CHECK(ffem::default_table_motion(2).x.acc != m.x.acc);
+  CHECK(furniture_fem::default_table_motion().x.acc == m.x.acc);
+  CHECK(furniture_fem::default_table_motion(2).x.acc != m.x.acc);
   CHECK(m.scaled(0.5).at(3.0).isApprox(0.5 * m.at(3.0)));
   CHECK(m.t_end() == Approx(10.0));
 }

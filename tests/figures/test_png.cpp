@@ -152,11 +152,11 @@ TEST_CASE("write_png reports the path on failure", "[png]") {
   try {
     write_png(bad, Image(4, 4));
     FAIL("write_png into a missing folder did not throw");
-  } catch (const std::runtime_error& e) {
+  } catch (const OutputError& e) {
     CHECK(std::string(e.what()).find(bad) != std::string::npos);
   }
   Image broken(4, 4);
   broken.rgb.pop_back();
-  CHECK_THROWS_AS(write_png(tmp("broken.png"), broken), std::runtime_error);
-  CHECK_THROWS_AS(write_png(tmp("empty.png"), Image()), std::runtime_error);
+  CHECK_THROWS_AS(write_png(tmp("broken.png"), broken), InputError);
+  CHECK_THROWS_AS(write_png(tmp("empty.png"), Image()), InputError);
 }

@@ -112,16 +112,16 @@ TEST_CASE("VTU rejects inconsistent meshes and names the path", "[vtk]") {
   LineMesh m;
   m.points = {Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX()};
   m.lines = {{0, 2}};
-  CHECK_THROWS_AS(write_vtu(tmp("bad.vtu"), m), std::invalid_argument);
+  CHECK_THROWS_AS(write_vtu(tmp("bad.vtu"), m), InputError);
   m.lines = {{0, 1}};
   m.add_point_scalar("short", {1.0});
-  CHECK_THROWS_AS(write_vtu(tmp("bad.vtu"), m), std::invalid_argument);
+  CHECK_THROWS_AS(write_vtu(tmp("bad.vtu"), m), InputError);
   m.point_data.clear();
   m.add_cell_scalar("nan", {NAN});
   try {
     write_vtu(tmp("bad.vtu"), m);
     FAIL("NaN accepted");
-  } catch (const std::invalid_argument& e) {
+  } catch (const InputError& e) {
     CHECK(std::string(e.what()).find("'nan'") != std::string::npos);
   }
   m.cell_data.clear();
@@ -129,7 +129,7 @@ TEST_CASE("VTU rejects inconsistent meshes and names the path", "[vtk]") {
   try {
     write_vtu(missing, m);
     FAIL("write into a missing folder did not throw");
-  } catch (const std::runtime_error& e) {
+  } catch (const OutputError& e) {
     CHECK(std::string(e.what()).find(missing) != std::string::npos);
   }
 }
@@ -154,6 +154,6 @@ TEST_CASE("PVD lists the time steps in order", "[vtk]") {
   }
   CHECK(times == std::vector<double>{0.0, 0.05, 0.1});
   CHECK(files == std::vector<std::string>{"frame_0000.vtu", "frame_0001.vtu", "frames/frame_0002.vtu"});
-  CHECK_THROWS_AS(pvd.add(0.1, "again.vtu"), std::invalid_argument);
-  CHECK_THROWS_AS(pvd.add(0.05, "back.vtu"), std::invalid_argument);
+  CHECK_THROWS_AS(pvd.add(0.1, "again.vtu"), InputError);
+  CHECK_THROWS_AS(pvd.add(0.05, "back.vtu"), InputError);
 }

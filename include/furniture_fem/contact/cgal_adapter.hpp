@@ -27,8 +27,6 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <cctype>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -46,6 +44,7 @@
 #include "../core/model.hpp"
 #include "contact_geometry.hpp"
 #include "../core/errors.hpp"
+#include "../core/text.hpp"
 
 namespace furniture_fem {
 
@@ -216,65 +215,20 @@ struct TriangleMesh {
 
 namespace detail {
 
-// The lines of a text file, numbered from 1, with '#' comments and surrounding blanks removed
-// (blank lines are kept so line numbers stay true).
-struct TextLines {
-  std::string file;
-  std::vector<std::string> lines;
-  explicit TextLines(std::string path, const std::string& text) : file(std::move(path)) {
-    std::size_t start = 0;
-    while (start <= text.size()) {
-      std::size_t end = text.find('\n', start);
-      if (end == std::string::npos) end = text.size();
-      std::string line = text.substr(start, end - start);
-      if (!line.empty() && line.back() == '\r') line.pop_back();
-      lines.push_back(std::move(line));
-      start = end + 1;
-    }
-  }
-  static std::string strip_comment(std::string_view s, char comment = '#') {
-    const std::size_t c = s.find(comment);
-    if (c != std::string_view::npos) s = s.substr(0, c);
-    const auto b = s.find_first_not_of(" \t\f\v\r");
-    if (b == std::string_view::npos) return {};
-    const auto e = s.find_last_not_of(" \t\f\v\r");
-    return std::string(s.substr(b, e - b + 1));
-  }
-};
-
-inline std::vector<std::string_view> split_words(std::string_view s) {
-  std::vector<std::string_view> w;
-  std::size_t i = 0;
-  while (i < s.size()) {
-    while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
-    const std::size_t b = i;
-    while (i < s.size() && !std::isspace(static_cast<unsigned char>(s[i]))) ++i;
-    if (i > b) w.push_back(s.substr(b, i - b));
-  }
-  return w;
-}
-
-inline bool parse_number(std::string_view w, double& x) {
-  if (!w.empty() && w.front() == '+') w.remove_prefix(1);  // from_chars rejects a leading '+'
-  const auto r = std::from_chars(w.data(), w.data() + w.size(), x);
-  return r.ec == std::errc() && r.ptr == w.data() + w.size() && std::isfinite(x);
-}
-inline bool parse_integer(std::string_view w, long& x) {
-  if (!w.empty() && w.front() == '+') w.remove_prefix(1);
-  const auto r = std::from_chars(w.data(), w.data() + w.size(), x);
-  return r.ec == std::errc() && r.ptr == w.data() + w.size();
-}
-
-inline std::string lowercase(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
+// The mesh readers use the core text helpers (core/text.hpp): numbered lines, comments stripped,
+// words, strict numbers (coordinates must be finite).
+using text::lowercase;
+using text::parse_finite;
+using text::parse_integer;
+using text::split_lines;
+using text::split_words;
+using text::strip_comment;
 
 inline Vec3 parse_point(const std::string& file, long line, const std::string& field,
                         const std::vector<std::string_view>& w, std::size_t first) {
   Vec3 p;
   for (int k = 0; k < 3; ++k)
-    if (first + k >= w.size() || !parse_number(w[first + k], p[k]))
+    if (first + k >= w.size() || !parse_finite(w[first + k], p[k]))
       throw InputError(file, line, field,
                        "expected three finite coordinates" +
                            (first + k < w.size() ? ", got '" + std::string(w[first + k]) + "'" : std::string(", line too short")));
@@ -287,11 +241,11 @@ inline void add_polygon(TriangleMesh& mesh, const std::vector<int>& face) {
 }
 
 inline TriangleMesh read_off(const std::string& file, const std::string& text) {
-  const TextLines t(file, text);
+  const text::Lines t = split_lines(file, text);
   std::size_t i = 0;
   auto next_line = [&](const char* what) -> std::pair<long, std::string> {
     while (i < t.lines.size()) {
-      std::string s = TextLines::strip_comment(t.lines[i]);
+      std::string s = strip_comment(t.lines[i]);
       ++i;
       if (!s.empty()) return {static_cast<long>(i), s};
     }
@@ -345,7 +299,7 @@ inline TriangleMesh read_off(const std::string& file, const std::string& text) {
 }
 
 inline TriangleMesh read_obj(const std::string& file, const std::string& text) {
-  const TextLines t(file, text);
+  const text::Lines t = split_lines(file, text);
   TriangleMesh mesh;
   struct PendingFace {
     long line;
@@ -354,7 +308,7 @@ inline TriangleMesh read_obj(const std::string& file, const std::string& text) {
   std::vector<PendingFace> faces;
   for (std::size_t i = 0; i < t.lines.size(); ++i) {
     const long ln = static_cast<long>(i + 1);
-    const std::string s = TextLines::strip_comment(t.lines[i]);
+    const std::string s = strip_comment(t.lines[i]);
     if (s.empty()) continue;
     const auto w = split_words(s);
     if (w[0] == "v") {
@@ -391,14 +345,14 @@ inline TriangleMesh read_obj(const std::string& file, const std::string& text) {
 }
 
 inline TriangleMesh read_stl_ascii(const std::string& file, const std::string& text) {
-  const TextLines t(file, text);
+  const text::Lines t = split_lines(file, text);
   TriangleMesh mesh;
   enum class Where { before_solid, in_solid, in_facet, in_loop, after_loop, done } where = Where::before_solid;
   long facet_line = 0;
   int loop_vertices = 0;
   for (std::size_t i = 0; i < t.lines.size() && where != Where::done; ++i) {
     const long ln = static_cast<long>(i + 1);
-    const std::string s = TextLines::strip_comment(t.lines[i], '\0');
+    const std::string s = strip_comment(t.lines[i], '\0');
     if (s.empty()) continue;
     const auto w = split_words(s);
     const std::string key = lowercase(std::string(w[0]));

@@ -4,12 +4,13 @@
 // An element policy works in the element's own corotated frame (local x along the chord): it turns
 // the 12 local deformation DOFs [u1 v1 w1 tx1 ty1 tz1 u2 v2 w2 tx2 ty2 tz2] into local nodal forces,
 // a local tangent and sectional forces, and keeps its own history (plastic strains, the position of
-// its integration point). The corotational frame, large rotations and assembly live in assembly.hpp,
-// so a new element is only the small-strain kernel. See docs/core/concept_element.md.
+// its integration point). The corotational frame, large rotations and assembly live in the simulation
+// (detail/body_system.hpp, simulation.hpp; docs/core/theory.md section 4), so a new element is only the
+// small-strain kernel. See docs/core/concept_element.md.
 //
 // Policies here:
 //  - AsiGaussTimoshenko: linear Timoshenko beam, one integration point shifted per the ASI-Gauss rule
-//    (FORMULATION sections 1-3): elastic points on the Gauss points of the pair, plastic hinges by
+//    (docs/core/theory.md sections 1-3): elastic points on the Gauss points of the pair, plastic hinges by
 //    shifting the point to the yielding end, return to the elastic position on unloading.
 //  - ConventionalTimoshenko: the same element with its point at the centre (s = 0): the conventional
 //    one-point element; its plastic hinges follow the original ASI rule.

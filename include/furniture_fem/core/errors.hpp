@@ -1,18 +1,32 @@
 #pragma once
-// Exceptions shared by every module. An error names where the bad value came from (a file and line,
-// a scene key path, a member or element) and the value, so a user can fix the input.
+// Exceptions shared by every module, one hierarchy under furniture_fem::Error:
+//
+//   Error (std::runtime_error)
+//   ├── InputError       bad input: a file, a scene key, an argument ("file:line: field: message")
+//   │   └── ModelError   a model that cannot be simulated (a bad model is bad input)
+//   ├── SimulationError  a run that can no longer be trusted (NaN, divergence, a failed solve)
+//   └── OutputError      a result that cannot be written (a file that cannot be opened or written)
+//
+// An error names where the bad value came from (a file and line, a scene key path, a member or
+// element, a function's argument) and the value, so a user can fix the input.
 #include <sstream>
 #include <stdexcept>
 #include <string>
 
 namespace furniture_fem {
 
-// Bad input read from a file: "file:line: field: message".
-class InputError : public std::runtime_error {
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Bad input: "file:line: field: message" for what was read from a file or a scene, or a message
+// alone ("low_pass: order must be 1..16 (got 20)") for a bad argument of a function.
+class InputError : public Error {
  public:
   InputError(std::string file, long line, std::string field, std::string message)
-      : std::runtime_error(format(file, line, field, message)),
-        file_(std::move(file)), line_(line), field_(std::move(field)) {}
+      : Error(format(file, line, field, message)), file_(std::move(file)), line_(line), field_(std::move(field)) {}
+  explicit InputError(const std::string& message) : Error(message), line_(0) {}
   const std::string& file() const noexcept { return file_; }
   long line() const noexcept { return line_; }
   const std::string& field() const noexcept { return field_; }
@@ -33,20 +47,26 @@ class InputError : public std::runtime_error {
 };
 
 // A model that cannot be simulated: "member 'left post' element 12: zero length (0 m)".
-class ModelError : public std::invalid_argument {
+class ModelError : public InputError {
  public:
-  using std::invalid_argument::invalid_argument;
+  explicit ModelError(const std::string& message) : InputError(message) {}
 };
 
 // A run that can no longer be trusted (NaN, divergence): carries the time and a diagnosis.
-class SimulationError : public std::runtime_error {
+class SimulationError : public Error {
  public:
   SimulationError(double time, std::string diagnosis)
-      : std::runtime_error("t = " + std::to_string(time) + " s: " + diagnosis), time_(time) {}
+      : Error("t = " + std::to_string(time) + " s: " + diagnosis), time_(time) {}
   double time() const noexcept { return time_; }
 
  private:
   double time_;
+};
+
+// A result file that cannot be opened or written: "write_png: cannot open 'a/b.png' for writing".
+class OutputError : public Error {
+ public:
+  using Error::Error;
 };
 
 }  // namespace furniture_fem

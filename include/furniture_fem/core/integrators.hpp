@@ -21,6 +21,22 @@ namespace furniture_fem {
 
 struct IntegratorCoefficients {
   double alpha_m = 0, alpha_f = 0, beta = 0.25, gamma = 0.5;
+
+  // What the coefficients make of a step dt (the Simulation uses these, and only these):
+  // the factor on the mass in the effective matrix, K_eff = (1 - af) K + mass_factor M, with viscous
+  // damping C = c M;
+  double mass_factor(double dt, double c) const {
+    return (1 - alpha_m) / (beta * dt * dt) + (1 - alpha_f) * gamma / (beta * dt) * c;
+  }
+  // Newmark's acceleration and velocity at t_{n+1} from the increment du over the step.
+  template <class V>
+  V acceleration(const V& du, const V& vn, const V& an, double dt) const {
+    return (du - dt * vn - dt * dt * (0.5 - beta) * an) / (beta * dt * dt);
+  }
+  template <class V>
+  V velocity(const V& vn, const V& an, const V& a1, double dt) const {
+    return vn + dt * ((1 - gamma) * an + gamma * a1);
+  }
 };
 
 // Carry the unbalanced force into the next step, or iterate until the residual is small.
@@ -133,6 +149,66 @@ inline double spectral_radius(const IntegratorCoefficients& c, double w) {
 }
 
 inline double Newmark::spectral_radius(double w) const { return furniture_fem::spectral_radius(coefficients(), w); }
+
+// What one step did: Newton iterations, the relative residual left (carried over if not iterated),
+// bodies whose matrix was refreshed, ASI integration points moved.
+struct StepInfo {
+  int iterations = 0;
+  double residual = 0;
+  bool converged = true;
+  int refreshed_bodies = 0;
+  int shifted_points = 0;
+};
+
+// How a step reaches equilibrium (the integrator's EquilibriumMode). A scheme orders the Simulation's
+// sweeps over the bodies; `Steps` is the Simulation's step kernel: the sweeps, and the options a
+// scheme reads (max_iterations, tolerance, check_finite).
+//
+// Carry-over: one solve per body; the contact forces applied over the step are those of the predictor
+// and the unbalance left by the solve enters the next step's residual, so neither the contact forces
+// nor the residual are evaluated again (half the contact cost), and each body is done in one go.
+struct CarryOverScheme {
+  template <class Steps>
+  static StepInfo step(Steps& steps) {
+    StepInfo info = steps.solve_and_commit_bodies();
+    info.iterations = 1;
+    info.converged = true;
+    return info;
+  }
+};
+
+// Iterated equilibrium: Newton with each body's matrix reused, contact re-evaluated at every
+// iterate, until the relative residual is below the tolerance (or max_iterations); then commit.
+struct IteratedScheme {
+  template <class Steps>
+  static StepInfo step(Steps& steps) {
+    StepInfo info;
+    steps.evaluate_residuals();
+    double rel = steps.residual_norm();
+    info.residual = rel;
+    for (int it = 0; it < steps.max_iterations(); ++it) {
+      info.refreshed_bodies += steps.update_bodies(it == 0);
+      steps.contact_at_trial();
+      steps.evaluate_residuals();
+      rel = steps.residual_norm();
+      info.iterations = it + 1;
+      info.residual = rel;
+      if (steps.check_finite() && !std::isfinite(rel))
+        throw SimulationError(steps.end_time(), "the residual is not finite (NaN or infinity) after iteration " +
+                                                    std::to_string(it + 1) + ": the step diverged; try a smaller dt");
+      if (rel < steps.tolerance()) break;
+    }
+    info.converged = rel < steps.tolerance();
+    info.shifted_points = steps.commit_bodies();
+    return info;
+  }
+};
+
+// The scheme of a mode.
+template <class Steps>
+StepInfo step_with(EquilibriumMode mode, Steps& steps) {
+  return mode == EquilibriumMode::carry_over ? CarryOverScheme::step(steps) : IteratedScheme::step(steps);
+}
 
 template <class I>
 constexpr bool check_integrator_policy() {

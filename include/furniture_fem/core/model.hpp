@@ -372,5 +372,3 @@ class Model {
 };
 
 }  // namespace furniture_fem
-
-namespace ffem = furniture_fem;

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <chrono>
+#include <exception>
 #include <functional>
 #include <memory>
 #include <string>
@@ -42,7 +43,10 @@ struct SimulationOptions {
   double mass_damping = 0;      // C = mass_damping * M (1/s); 0: no viscous damping
   int max_iterations = 25;      // for EquilibriumMode::iterate
   double tolerance = 1e-7;      // residual norm relative to the force scale
-  int refresh_interval = 1;     // refresh each body's matrix every N steps (1: every step)
+  // Refresh (assemble and factorise) each body's matrix every this many steps (1: every step);
+  // between refreshes the factorisation is reused with the body's rigid rotation taken out.
+  int refresh_interval_steps = 1;
+  int refresh_interval = 0;     // the old name of refresh_interval_steps: used when > 0 (to be removed)
   bool geometric_stiffness = true;
   bool finite_rotation_update = true;  // put each free body's rigid turn of a step on the finite rotation
   bool check_finite = true;     // stop with a diagnosis on NaN / divergence
@@ -75,14 +79,6 @@ concept ContactPolicy = requires(C c, const ContactView& view, Eigen::VectorXd& 
 struct StepTimings {
   double elements = 0, contact = 0, solve = 0, factorize = 0, bodies = 0, total = 0;
   double other() const { return total - contact - bodies; }  // predictor, loads, checks (wall)
-};
-
-struct StepInfo {
-  int iterations = 0;
-  double residual = 0;       // relative residual at the end of the step (carried over if not iterated)
-  bool converged = true;
-  int refreshed_bodies = 0;
-  int shifted_points = 0;    // ASI integration point moves in this step
 };
 
 // The energy ledger (J): what the structure holds, and the work done on it.
@@ -120,6 +116,8 @@ class Simulation {
       : model_(model), integrator_(integrator), opt_(options), coef_(integrator.coefficients()),
         contact_(std::move(contact)) {
     model_.validate();
+    if (opt_.refresh_interval > 0) opt_.refresh_interval_steps = opt_.refresh_interval;
+    opt_.refresh_interval = 0;
     if (!(opt_.dt > 0) || !std::isfinite(opt_.dt))
       throw ModelError("simulation: dt must be positive and finite (got " + detail::fmt(opt_.dt) + ")");
     if constexpr (Element::needs_pairs) {
@@ -199,10 +197,10 @@ class Simulation {
   // The body's static tangent stiffness at the current configuration (dense; for modal analysis of
   // small models), and the lumped mass diagonal, in the body's local DOF order (see body_nodes).
   Eigen::MatrixXd stiffness_matrix(int body) {
-    const bool saved = static_;
-    static_ = true;
-    evaluate_body(body, true);
-    static_ = saved;
+    {
+      const StaticScope statics(*this, StaticScope::keep_dynamics);
+      evaluate_body(body, true);
+    }
     systems_[body].needs_refresh = true;
     systems_[body].assembled = false;
     return Eigen::MatrixXd(systems_[body].K);
@@ -232,7 +230,6 @@ class Simulation {
     if (!started_) start();
     const double t1 = t_ + opt_.dt;
     t_state_ = t1;
-    StepInfo info;
     // Predictor "no motion" (Du = 0) and the loads at t_{n+1}. Its element forces are the last step's.
     const Loads loads = loads_at(t1);
     body_sweep([&](int b) { predict_body(b, loads); });
@@ -244,47 +241,8 @@ class Simulation {
       throw SimulationError(t_, "the residual is not finite (NaN or infinity) at the start of the step: " +
                                     non_finite_diagnosis());
     }
-    if (integrator_.mode == EquilibriumMode::carry_over) {
-      // Carry-over: the contact forces applied over this step are those of the predictor (fc1_); the
-      // unbalance left by the solve enters the next step's residual, so neither the contact forces nor
-      // the residual are evaluated again (half the contact cost), and each body is done in one go.
-      body_sweep([&](int b) {
-        BodyStepSums& s = sums_[b];
-        timed(s.solve, [&] { residual_body(systems_[b], fext1_, s.residual_num, s.residual_den); });
-        if (!update_body(b, s, true)) return;
-        if (opt_.check_finite) {
-          for (int n : systems_[b].nodes) s.not_finite = s.not_finite || !Du_.segment<6>(6 * n).allFinite();
-          if (s.not_finite) return;
-        }
-        commit_body(b, s);
-      });
-      info.iterations = 1;
-      info.converged = true;
-      const BodyStepSums total = sum_bodies(t1);
-      info.residual = total.residual();
-      info.refreshed_bodies = total.refreshed;
-      info.shifted_points = total.shifted;
-    } else {
-      body_sweep([&](int b) { residual_body(systems_[b], fext1_, sums_[b].residual_num, sums_[b].residual_den); });
-      double rel = sum_bodies(t1).residual();
-      info.residual = rel;
-      for (int it = 0; it < opt_.max_iterations; ++it) {
-        body_sweep([&](int b) { update_body(b, sums_[b], it == 0); });
-        info.refreshed_bodies += sum_bodies(t1).refreshed;
-        timed(timings_.contact, [&] { contact_forces(t1, v_, fc1_); });
-        body_sweep([&](int b) { residual_body(systems_[b], fext1_, sums_[b].residual_num, sums_[b].residual_den); });
-        rel = sum_bodies(t1).residual();
-        info.iterations = it + 1;
-        info.residual = rel;
-        if (opt_.check_finite && !std::isfinite(rel))
-          throw SimulationError(t1, "the residual is not finite (NaN or infinity) after iteration " +
-                                        std::to_string(it + 1) + ": the step diverged; try a smaller dt");
-        if (rel < opt_.tolerance) break;
-      }
-      info.converged = rel < opt_.tolerance;
-      body_sweep([&](int b) { commit_body(b, sums_[b]); });
-      info.shifted_points = sum_bodies(t1).shifted;
-    }
+    StepKernel kernel{*this, t1};
+    const StepInfo info = step_with(integrator_.mode, kernel);
     if constexpr (requires { contact_.commit(); }) contact_.commit();
     t_ = t1;
     ++steps_;
@@ -311,8 +269,7 @@ class Simulation {
   };
   StaticResult solve_static(int increments = 1, int max_iterations = 50, double tolerance = 1e-9) {
     StaticResult res;
-    const bool saved_static = static_;
-    static_ = true;
+    const StaticScope statics(*this, StaticScope::restart_dynamics);
     if (!started_) start();
     for (int k = 1; k <= increments; ++k) {
       load_factor_ = double(k) / increments;
@@ -345,11 +302,6 @@ class Simulation {
         break;
       }
     }
-    // A dynamic step after a static solve starts from this state: start() again, which assembles the
-    // effective (dynamic) matrix in place of the static tangent left flagged as assembled, and sets the
-    // initial accelerations, forces and energy from the static equilibrium.
-    started_ = false;
-    static_ = saved_static;
     return res;
   }
   void set_load_factor(double f) { load_factor_ = f; }
@@ -416,6 +368,97 @@ class Simulation {
   const Integrator& integrator() const { return integrator_; }
 
  private:
+  // Statics for the life of the scope: the loads at the load factor, no inertia in the matrices. Its
+  // end, however reached, restores the mode. After a static solve (restart_dynamics) the next dynamic
+  // step starts again (start()): it assembles the effective (dynamic) matrix in place of the static
+  // tangent left flagged as assembled, and sets the initial accelerations, forces and energy from the
+  // state statics left. Left by an exception, every body's matrix is refreshed too: a body solved
+  // before the failure holds a static factorisation its next step would otherwise reuse.
+  class StaticScope {
+   public:
+    enum Exit { keep_dynamics, restart_dynamics };
+    StaticScope(Simulation& sim, Exit exit)
+        : sim_(sim), saved_(sim.static_), exit_(exit), exceptions_(std::uncaught_exceptions()) {
+      sim.static_ = true;
+    }
+    ~StaticScope() {
+      sim_.static_ = saved_;
+      if (exit_ == keep_dynamics) return;
+      sim_.started_ = false;
+      if (std::uncaught_exceptions() > exceptions_)
+        for (auto& bs : sim_.systems_) bs.needs_refresh = true;
+    }
+    StaticScope(const StaticScope&) = delete;
+    StaticScope& operator=(const StaticScope&) = delete;
+
+   private:
+    Simulation& sim_;
+    bool saved_;
+    Exit exit_;
+    int exceptions_;
+  };
+
+  // What a step scheme (CarryOverScheme, IteratedScheme in integrators.hpp) drives: the sweeps over
+  // the bodies of the step to t1, and the options it reads.
+  class StepKernel {
+   public:
+    StepKernel(Simulation& sim, double t1) : sim_(sim), t1_(t1) {}
+    int max_iterations() const { return sim_.opt_.max_iterations; }
+    double tolerance() const { return sim_.opt_.tolerance; }
+    bool check_finite() const { return sim_.opt_.check_finite; }
+    double end_time() const { return t1_; }
+
+    // Each body in one go: its residual, solve, update and commit (carry-over).
+    StepInfo solve_and_commit_bodies() {
+      sim_.body_sweep([&](int b) { sim_.solve_and_commit_body(b); });
+      const BodyStepSums total = sim_.sum_bodies(t1_);
+      StepInfo info;
+      info.residual = total.residual();
+      info.refreshed_bodies = total.refreshed;
+      info.shifted_points = total.shifted;
+      return info;
+    }
+    void evaluate_residuals() {
+      sim_.body_sweep([&](int b) {
+        BodyStepSums& s = sim_.sums_[b];
+        sim_.residual_body(sim_.systems_[b], sim_.fext1_, s.residual_num, s.residual_den);
+      });
+    }
+    double residual_norm() { return sim_.sum_bodies(t1_).residual(); }
+    // Returns the number of bodies whose matrix was refreshed.
+    int update_bodies(bool first_solve) {
+      sim_.body_sweep([&](int b) { sim_.update_body(b, sim_.sums_[b], first_solve); });
+      return sim_.sum_bodies(t1_).refreshed;
+    }
+    // Contact at the current iterate (its positions and velocities).
+    void contact_at_trial() {
+      sim_.timed(sim_.timings_.contact, [&] { sim_.contact_forces(t1_, sim_.v_, sim_.fc1_); });
+    }
+    // Returns the number of ASI integration points moved.
+    int commit_bodies() {
+      sim_.body_sweep([&](int b) { sim_.commit_body(b, sim_.sums_[b]); });
+      return sim_.sum_bodies(t1_).shifted;
+    }
+
+   private:
+    Simulation& sim_;
+    double t1_;
+  };
+
+  // A body's whole step in carry-over mode: residual, solve, update and commit while its data is in
+  // the core's cache; a failed solve or a non-finite increment leaves it uncommitted (sum_bodies
+  // reports it).
+  void solve_and_commit_body(int b) {
+    BodyStepSums& s = sums_[b];
+    timed(s.solve, [&] { residual_body(systems_[b], fext1_, s.residual_num, s.residual_den); });
+    if (!update_body(b, s, true)) return;
+    if (opt_.check_finite) {
+      for (int n : systems_[b].nodes) s.not_finite = s.not_finite || !Du_.segment<6>(6 * n).allFinite();
+      if (s.not_finite) return;
+    }
+    commit_body(b, s);
+  }
+
   int check_node(int n) const {
     if (n < 0 || n >= model_.num_nodes()) throw ModelError("node index out of range: " + std::to_string(n));
     return n;
@@ -556,10 +599,7 @@ class Simulation {
     double* Kv = bs.K.valuePtr();
     if (assemble) std::fill(Kv, Kv + bs.K.nonZeros(), 0.0);
     for (int n : bs.nodes) fint_.segment<6>(6 * n).setZero();
-    if (bs.rigid) {
-      bs.assembled = true;  // nothing to assemble: the rigid solve builds its 6 x 6 matrix itself
-      return;
-    }
+    if (bs.rigid) return RigidBody::evaluate(bs);
     const double kf = static_ ? 1.0 : (1 - coef_.alpha_f);
     Vec12 f, fg;
     Mat12 k, kg;
@@ -605,8 +645,7 @@ class Simulation {
     }
     if (assemble) {
       const double dt = opt_.dt;
-      const double mf = static_ ? 0.0 : (1 - coef_.alpha_m) / (coef_.beta * dt * dt) +
-                                            (1 - coef_.alpha_f) * coef_.gamma / (coef_.beta * dt) * opt_.mass_damping;
+      const double mf = static_ ? 0.0 : coef_.mass_factor(dt, opt_.mass_damping);
       for (size_t k2 = 0; k2 < bs.nodes.size(); ++k2)
         for (int i = 0; i < 6; ++i) {
           const int ld = 6 * static_cast<int>(k2) + i;
@@ -711,22 +750,18 @@ class Simulation {
       v_contact_.segment<6>(i) = vn_.segment<6>(i) + dt * an_.segment<6>(i);
     }
     kinematics_body(b, false);  // positions stay: Du = 0
-    if (bs.rigid) {
-      bs.rigid_c0 = mass_centre(bs);
-      bs.rigid_dc.setZero();
-      bs.rigid_Q.setIdentity();
-    }
+    if (bs.rigid) RigidBody::start_step(*this, bs);
     external_forces_body(b, loads, fext1_);
   }
 
   // Newmark's velocity and acceleration from the increment Du, and (positions) the nodes' placement.
   void kinematics_body(int b, bool positions = true) {
-    const double dt = opt_.dt, be = coef_.beta, g = coef_.gamma;
+    const double dt = opt_.dt;
     for (int n : systems_[b].nodes) {
       const int i = 6 * n;
-      a_.segment<6>(i) = (Du_.segment<6>(i) - dt * vn_.segment<6>(i) - dt * dt * (0.5 - be) * an_.segment<6>(i)) /
-                         (be * dt * dt);
-      v_.segment<6>(i) = vn_.segment<6>(i) + dt * ((1 - g) * an_.segment<6>(i) + g * a_.segment<6>(i));
+      const Vec6 vn = vn_.segment<6>(i), an = an_.segment<6>(i);
+      a_.segment<6>(i) = coef_.acceleration<Vec6>(Du_.segment<6>(i), vn, an, dt);
+      v_.segment<6>(i) = coef_.velocity<Vec6>(vn, an, a_.segment<6>(i), dt);
       if (!positions) continue;
       u_[n] = u0_[n] + Du_.segment<3>(i);
       x_[n] = model_.node(n).X + u_[n];
@@ -783,7 +818,8 @@ class Simulation {
   bool update_body(int b, BodyStepSums& s, bool first_solve) {
     timed(s.solve, [&] {
       solve_body(b, s);
-      if (first_solve && opt_.finite_rotation_update && !s.solve_failed) finite_rotation_body(b);
+      if (first_solve && opt_.finite_rotation_update && !s.solve_failed && !systems_[b].rigid)
+        FlexibleBody::finite_rotation(*this, b);
     });
     if (s.solve_failed) return false;
     timed(s.elements, [&] {
@@ -794,134 +830,161 @@ class Simulation {
   }
 
   // Solves one body's system for its part of the residual r_ and adds the result to Du_, refreshing
-  // (assembling and factorising) its matrix first when it is due.
+  // (assembling and factorising) its matrix first when it is due. The body's kind does the solve.
   void solve_body(int b, BodyStepSums& s) {
     auto& bs = systems_[b];
-    if (bs.steps_since_refresh >= opt_.refresh_interval) bs.needs_refresh = true;
+    if (bs.steps_since_refresh >= opt_.refresh_interval_steps) bs.needs_refresh = true;
     if (bs.needs_refresh && !bs.assembled) evaluate_body(b, true);
-    if (bs.rigid) {
-      if (static_) {
+    if (bs.rigid) RigidBody::solve(*this, bs, s);
+    else FlexibleBody::solve(*this, b, s);
+  }
+
+  // A flexible body: its elements' forces and tangents, its sparse effective matrix and its own
+  // linear solver, the factorisation reused between refreshes (SimulationOptions::refresh_interval_steps).
+  struct FlexibleBody {
+    static void solve(Simulation& sim, int b, BodyStepSums& s) {
+      auto& bs = sim.systems_[b];
+      const bool reuse = sim.opt_.refresh_interval_steps > 1 && !sim.static_;
+      Mat3 Q = Mat3::Identity();
+      if (reuse) Q = sim.body_rotation(bs);
+      if (bs.needs_refresh) {
+        try {
+          sim.timed(s.factorize, [&] { sim.solvers_[b]->factorize(bs.K); });
+        } catch (const std::exception&) {
+          s.solve_failed = true;
+          return;
+        }
+        bs.Q_factor = Q;
+        bs.needs_refresh = false;
+        bs.assembled = false;
+        bs.steps_since_refresh = 0;
+        ++s.refreshed;
+      }
+      // Take the body's rigid rotation since the factorisation out of the right-hand side (P^T r),
+      // solve with the old matrix, put it back (P y): exact for a rigidly rotated body.
+      const Mat3 P = Q * bs.Q_factor.transpose();
+      for (size_t k = 0; k < bs.nodes.size(); ++k) {
+        const int g = bs.nodes[k];
+        bs.r.segment<3>(6 * k) = P.transpose() * sim.r_.segment<3>(6 * g);
+        bs.r.segment<3>(6 * k + 3) = P.transpose() * sim.r_.segment<3>(6 * g + 3);
+      }
+      if (!sim.solvers_[b]->solve(bs.r, bs.dx)) s.solve_failed = true;
+      for (size_t k = 0; k < bs.nodes.size(); ++k) {
+        const int g = bs.nodes[k];
+        sim.Du_.segment<3>(6 * g) += P * bs.dx.segment<3>(6 * k);
+        sim.Du_.segment<3>(6 * g + 3) += P * bs.dx.segment<3>(6 * k + 3);
+      }
+    }
+
+    // The linear solve moves the nodes of a turning body along tangents: each member stretches by
+    // (w dt)^2 / 2 of its length, a spurious axial force that, carried over, excites the stiff axial
+    // modes, which the integrator then damps: fast rigid rotation loses its energy (docs/core/theory.md).
+    // Here the rigid part of a free body's increment is put on the finite rotation: with theta the
+    // body's least-squares turn of the increment and c its mass centre at the step's start, every
+    // node's translation gets (exp(theta) - I - [theta]x)(x0 - c), exact for a rigid turn and
+    // O(theta^2) for the rest. Bodies with a fixed DOF (they do not turn freely) are left as they are.
+    static void finite_rotation(Simulation& sim, int b) {
+      const auto& bs = sim.systems_[b];
+      const auto& mass = sim.mass_;
+      const auto& x = sim.x_;
+      auto& Du = sim.Du_;
+      if (bs.nodes.size() < 2) return;
+      for (char f : bs.fixed)
+        if (f) return;
+      Vec3 c = Vec3::Zero(), dc = Vec3::Zero();
+      double m = 0;
+      for (int n : bs.nodes) {
+        c += mass[6 * n] * x[n];
+        dc += mass[6 * n] * Du.template segment<3>(6 * n);
+        m += mass[6 * n];
+      }
+      c /= m;
+      dc /= m;
+      // The body's rotation increment: the least-squares rigid turn of the translational increments
+      // about the mass centre, J theta = sum m r x (du - dc).
+      Mat3 J = Mat3::Zero();
+      Vec3 h = Vec3::Zero();
+      for (int n : bs.nodes) {
+        const Vec3 r = x[n] - c;
+        J += mass[6 * n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
+        h += mass[6 * n] * r.cross(Du.template segment<3>(6 * n) - dc);
+      }
+      const Eigen::LDLT<Mat3> ldlt(J);
+      if (ldlt.info() != Eigen::Success || ldlt.rcond() < 1e-9) return;  // a straight bar: no unique turn
+      const Vec3 theta = ldlt.solve(h);
+      if (!theta.allFinite() || theta.norm() < 1e-12) return;
+      const Mat3 C = detail::rotation_exp(theta) - Mat3::Identity() - detail::skew(theta);
+      for (int n : bs.nodes) Du.template segment<3>(6 * n) += C * (x[n] - c);
+    }
+  };
+
+  // A rigid body (set_rigid): six DOF, the same nodes, masses and contact geometry; its elements carry
+  // no forces. Newton on the body's translation and rotation, the residual reduced from the nodal one,
+  // the nodes placed exactly on the rigid motion from the start of the step (finite rotation, no drift).
+  struct RigidBody {
+    // Nothing to assemble: the rigid solve builds its 6 x 6 matrix itself.
+    static void evaluate(detail::BodySystem& bs) { bs.assembled = true; }
+
+    static Vec3 mass_centre(const Simulation& sim, const detail::BodySystem& bs) {
+      Vec3 c = Vec3::Zero();
+      double m = 0;
+      for (int n : bs.nodes) {
+        c += sim.mass_[6 * n] * sim.x_[n];
+        m += sim.mass_[6 * n];
+      }
+      return c / m;
+    }
+
+    // The motion of the step starts at the body's place at t_n.
+    static void start_step(const Simulation& sim, detail::BodySystem& bs) {
+      bs.rigid_c0 = mass_centre(sim, bs);
+      bs.rigid_dc.setZero();
+      bs.rigid_Q.setIdentity();
+    }
+
+    // Statics has no inertia to hold a rigid body: its solve fails (the caller reports it).
+    static void solve(Simulation& sim, detail::BodySystem& bs, BodyStepSums& s) {
+      if (sim.static_) {
         s.solve_failed = true;
         return;
       }
-      solve_rigid(bs);
+      newton_step(sim, bs);
       bs.needs_refresh = false;
       bs.assembled = false;
-      return;
     }
-    const bool reuse = opt_.refresh_interval > 1 && !static_;
-    Mat3 Q = Mat3::Identity();
-    if (reuse) Q = body_rotation(bs);
-    if (bs.needs_refresh) {
-      try {
-        timed(s.factorize, [&] { solvers_[b]->factorize(bs.K); });
-      } catch (const std::exception&) {
-        s.solve_failed = true;
-        return;
+
+    // Nodal increments dx_n = dc + dtheta x r_n, rotations dtheta; the nodal residual and effective
+    // mass reduced to 6 x 6 (T^T r, T^T M* T) and solved.
+    static void newton_step(Simulation& sim, detail::BodySystem& bs) {
+      const double mf = sim.coef_.mass_factor(sim.opt_.dt, sim.opt_.mass_damping);
+      const auto& mass = sim.mass_;
+      const auto& r_nodal = sim.r_;
+      const Vec3 c = mass_centre(sim, bs);
+      Eigen::Matrix<double, 6, 6> A = Eigen::Matrix<double, 6, 6>::Zero();
+      Vec6 R6 = Vec6::Zero();
+      for (int n : bs.nodes) {
+        const Vec3 r = sim.x_[n] - c;
+        const Mat3 S = detail::skew(r);  // dtheta x r = -S dtheta
+        const double m = mf * mass[6 * n], J = mf * mass[6 * n + 3];
+        A.template block<3, 3>(0, 0) += m * Mat3::Identity();
+        A.template block<3, 3>(0, 3) -= m * S;
+        A.template block<3, 3>(3, 0) += m * S;
+        A.template block<3, 3>(3, 3) += -m * S * S + J * Mat3::Identity();
+        const Vec3 rf = r_nodal.template segment<3>(6 * n), rm = r_nodal.template segment<3>(6 * n + 3);
+        R6.template head<3>() += rf;
+        R6.template tail<3>() += S * rf + rm;
       }
-      bs.Q_factor = Q;
-      bs.needs_refresh = false;
-      bs.assembled = false;
-      bs.steps_since_refresh = 0;
-      ++s.refreshed;
+      const Vec6 dq = A.ldlt().solve(R6);
+      bs.rigid_dc += dq.template head<3>();
+      bs.rigid_Q = detail::rotation_exp(dq.template tail<3>()) * bs.rigid_Q;
+      const Vec3 rot = detail::rotation_log(bs.rigid_Q);
+      for (int n : bs.nodes) {
+        const Vec3 x0 = sim.model_.node(n).X + sim.u0_[n];
+        sim.Du_.template segment<3>(6 * n) = bs.rigid_c0 + bs.rigid_dc + bs.rigid_Q * (x0 - bs.rigid_c0) - x0;
+        sim.Du_.template segment<3>(6 * n + 3) = rot;
+      }
     }
-    // Take the body's rigid rotation since the factorisation out of the right-hand side (P^T r),
-    // solve with the old matrix, put it back (P y): exact for a rigidly rotated body.
-    const Mat3 P = Q * bs.Q_factor.transpose();
-    for (size_t k = 0; k < bs.nodes.size(); ++k) {
-      const int g = bs.nodes[k];
-      bs.r.segment<3>(6 * k) = P.transpose() * r_.segment<3>(6 * g);
-      bs.r.segment<3>(6 * k + 3) = P.transpose() * r_.segment<3>(6 * g + 3);
-    }
-    if (!solvers_[b]->solve(bs.r, bs.dx)) s.solve_failed = true;
-    for (size_t k = 0; k < bs.nodes.size(); ++k) {
-      const int g = bs.nodes[k];
-      Du_.segment<3>(6 * g) += P * bs.dx.segment<3>(6 * k);
-      Du_.segment<3>(6 * g + 3) += P * bs.dx.segment<3>(6 * k + 3);
-    }
-  }
-
-  // The linear solve moves the nodes of a turning body along tangents: each member stretches by
-  // (w dt)^2 / 2 of its length, a spurious axial force that, carried over, excites the stiff axial
-  // modes, which the integrator then damps: fast rigid rotation loses its energy (docs/core/theory.md).
-  // Here the rigid part of each free body's increment is put on the finite rotation: with theta the
-  // body's least-squares turn of the increment and c its mass centre at the step's start, every node's
-  // translation gets (exp(theta) - I - [theta]x)(x0 - c), exact for a rigid turn and O(theta^2) for
-  // the rest. Bodies with a fixed DOF (they do not turn freely) and rigid bodies (solved on the finite
-  // rotation already) are left as they are.
-  void finite_rotation_body(int b) {
-    const auto& bs = systems_[b];
-    if (bs.rigid || bs.nodes.size() < 2) return;
-    for (char f : bs.fixed)
-      if (f) return;
-    Vec3 c = Vec3::Zero(), dc = Vec3::Zero();
-    double m = 0;
-    for (int n : bs.nodes) {
-      c += mass_[6 * n] * x_[n];
-      dc += mass_[6 * n] * Du_.segment<3>(6 * n);
-      m += mass_[6 * n];
-    }
-    c /= m;
-    dc /= m;
-    // The body's rotation increment: the least-squares rigid turn of the translational increments
-    // about the mass centre, J theta = sum m r x (du - dc).
-    Mat3 J = Mat3::Zero();
-    Vec3 h = Vec3::Zero();
-    for (int n : bs.nodes) {
-      const Vec3 r = x_[n] - c;
-      J += mass_[6 * n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
-      h += mass_[6 * n] * r.cross(Du_.segment<3>(6 * n) - dc);
-    }
-    const Eigen::LDLT<Mat3> ldlt(J);
-    if (ldlt.info() != Eigen::Success || ldlt.rcond() < 1e-9) return;  // a straight bar: no unique turn
-    const Vec3 theta = ldlt.solve(h);
-    if (!theta.allFinite() || theta.norm() < 1e-12) return;
-    const Mat3 C = detail::rotation_exp(theta) - Mat3::Identity() - detail::skew(theta);
-    for (int n : bs.nodes) Du_.segment<3>(6 * n) += C * (x_[n] - c);
-  }
-
-  Vec3 mass_centre(const detail::BodySystem& bs) const {
-    Vec3 c = Vec3::Zero();
-    double m = 0;
-    for (int n : bs.nodes) {
-      c += mass_[6 * n] * x_[n];
-      m += mass_[6 * n];
-    }
-    return c / m;
-  }
-
-  // Newton step of a rigid body: nodal increments dx_n = dc + dtheta x r_n, rotations dtheta; the
-  // nodal residual and effective mass reduced to 6 x 6 (T^T r, T^T M* T), solved, and the nodes
-  // placed exactly on the rigid motion from the start of the step (finite rotation, no drift).
-  void solve_rigid(detail::BodySystem& bs) {
-    const double dt = opt_.dt;
-    const double mf = (1 - coef_.alpha_m) / (coef_.beta * dt * dt) +
-                      (1 - coef_.alpha_f) * coef_.gamma / (coef_.beta * dt) * opt_.mass_damping;
-    const Vec3 c = mass_centre(bs);
-    Eigen::Matrix<double, 6, 6> A = Eigen::Matrix<double, 6, 6>::Zero();
-    Vec6 R6 = Vec6::Zero();
-    for (int n : bs.nodes) {
-      const Vec3 r = x_[n] - c;
-      const Mat3 S = detail::skew(r);  // dtheta x r = -S dtheta
-      const double m = mf * mass_[6 * n], J = mf * mass_[6 * n + 3];
-      A.block<3, 3>(0, 0) += m * Mat3::Identity();
-      A.block<3, 3>(0, 3) -= m * S;
-      A.block<3, 3>(3, 0) += m * S;
-      A.block<3, 3>(3, 3) += -m * S * S + J * Mat3::Identity();
-      const Vec3 rf = r_.segment<3>(6 * n), rm = r_.segment<3>(6 * n + 3);
-      R6.head<3>() += rf;
-      R6.tail<3>() += S * rf + rm;
-    }
-    const Vec6 dq = A.ldlt().solve(R6);
-    bs.rigid_dc += dq.head<3>();
-    bs.rigid_Q = detail::rotation_exp(dq.tail<3>()) * bs.rigid_Q;
-    const Vec3 rot = detail::rotation_log(bs.rigid_Q);
-    for (int n : bs.nodes) {
-      const Vec3 x0 = model_.node(n).X + u0_[n];
-      Du_.segment<3>(6 * n) = bs.rigid_c0 + bs.rigid_dc + bs.rigid_Q * (x0 - bs.rigid_c0) - x0;
-      Du_.segment<3>(6 * n + 3) = rot;
-    }
-  }
+  };
 
   // Names the first node whose state is not finite, for the diagnosis of a diverged step.
   std::string non_finite_diagnosis() const {

@@ -4,9 +4,9 @@
 // The effective matrix K* = K + M/(beta dt^2) (+ damping) of a body is symmetric positive definite.
 // A policy sees one body's sparse matrix at a time: analyse(K) once per pattern, factorize(K) when
 // the simulation refreshes the matrix, solve(r, x) for every right-hand side. The simulation decides
-// when to refresh (see SimulationOptions::refresh_interval); between refreshes it reuses the
-// factorisation with the body's rigid rotation taken out (assembly.hpp), which keeps it valid for a
-// tumbling item. See docs/core/concept_linear_solver.md.
+// when to refresh (see SimulationOptions::refresh_interval_steps); between refreshes it reuses the
+// factorisation with the body's rigid rotation taken out (docs/core/theory.md section 8), which keeps
+// it valid for a tumbling item. See docs/core/concept_linear_solver.md.
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>

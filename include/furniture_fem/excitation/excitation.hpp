@@ -180,9 +180,9 @@ inline bool match_npts(const std::string& line, std::string& npts, std::string& 
 
 inline void check_record(const Record& r, const char* what) {
   if (!(r.dt > 0) || !std::isfinite(r.dt))
-    throw std::invalid_argument(std::string(what) + ": record '" + r.name + "' has dt = " + num(r.dt) +
+    throw InputError(std::string(what) + ": record '" + r.name + "' has dt = " + num(r.dt) +
                                 " (must be positive)");
-  if (r.acc.empty()) throw std::invalid_argument(std::string(what) + ": record '" + r.name + "' has no samples");
+  if (r.acc.empty()) throw InputError(std::string(what) + ": record '" + r.name + "' has no samples");
 }
 
 }  // namespace detail::gm
@@ -418,12 +418,12 @@ inline void check_record(const Record& r, const char* what) {
 // increase with a uniform step (a record here is uniformly sampled); the first time becomes t0.
 [[nodiscard]] inline Record read_columns(const std::string& path, const ReadOptions& opt = {}) {
   using namespace detail::gm;
-  if (opt.skip_lines < 0) throw std::invalid_argument("read_columns: skip_lines must be >= 0");
-  if (opt.dt < 0 || !std::isfinite(opt.dt)) throw std::invalid_argument("read_columns: dt must be >= 0");
+  if (opt.skip_lines < 0) throw InputError("read_columns: skip_lines must be >= 0");
+  if (opt.dt < 0 || !std::isfinite(opt.dt)) throw InputError("read_columns: dt must be >= 0");
   const TextFile f = read_text(path);
   const Layout layout = opt.layout != Layout::automatic ? opt.layout : (opt.dt > 0 ? Layout::values : Layout::time_value);
   if (layout == Layout::values && !(opt.dt > 0))
-    throw std::invalid_argument("read_columns: Layout::values needs ReadOptions::dt > 0");
+    throw InputError("read_columns: Layout::values needs ReadOptions::dt > 0");
 
   Record r;
   r.name = file_stem(path);
@@ -512,7 +512,7 @@ inline void check_record(const Record& r, const char* what) {
     case Format::knet: return read_knet(path, opt.remove_mean);
     case Format::jma_csv: {
       if (opt.component < 0 || opt.component > 2)
-        throw std::invalid_argument("read_record: JMA component must be 0 (NS), 1 (EW) or 2 (UD)");
+        throw InputError("read_record: JMA component must be 0 (NS), 1 (EW) or 2 (UD)");
       auto c = read_jma_csv(path);
       return std::move(c[static_cast<std::size_t>(opt.component)]);
     }
@@ -552,7 +552,7 @@ inline void write_columns(const std::string& path, const Record& r) {
 // when the span is not a multiple of dt). Down-sampling does not low-pass: call low_pass first.
 [[nodiscard]] inline Record resample(const Record& rec, double dt) {
   detail::gm::check_record(rec, "resample");
-  if (!(dt > 0) || !std::isfinite(dt)) throw std::invalid_argument("resample: dt must be positive");
+  if (!(dt > 0) || !std::isfinite(dt)) throw InputError("resample: dt must be positive");
   Record r = rec;
   r.dt = dt;
   const auto n = static_cast<std::size_t>(std::floor(rec.duration() / dt + 1e-6)) + 1;
@@ -566,7 +566,7 @@ inline void write_columns(const std::string& path, const Record& r) {
 // With zero_final_velocity a constant is then subtracted so the velocity (trapezoid) ends at 0.
 [[nodiscard]] inline Record baseline_correct(const Record& rec, int order = 1, bool zero_final_velocity = false) {
   detail::gm::check_record(rec, "baseline_correct");
-  if (order < 0 || order > 2) throw std::invalid_argument("baseline_correct: order must be 0, 1 or 2");
+  if (order < 0 || order > 2) throw InputError("baseline_correct: order must be 0, 1 or 2");
   Record r = rec;
   detail::gm::remove_polynomial(r.acc, order);
   if (zero_final_velocity && r.acc.size() > 1) {
@@ -583,9 +583,9 @@ inline void write_columns(const std::string& path, const Record& r) {
 // padded by odd reflection over three periods of f_cut to keep edge transients out.
 [[nodiscard]] inline Record low_pass(const Record& rec, double f_cut, int order = 4) {
   detail::gm::check_record(rec, "low_pass");
-  if (order < 1 || order > 16) throw std::invalid_argument("low_pass: order must be 1..16");
+  if (order < 1 || order > 16) throw InputError("low_pass: order must be 1..16");
   if (!(f_cut > 0) || !(f_cut < 0.5 / rec.dt))
-    throw std::invalid_argument("low_pass: f_cut = " + detail::gm::num(f_cut) + " Hz must lie in (0, Nyquist = " +
+    throw InputError("low_pass: f_cut = " + detail::gm::num(f_cut) + " Hz must lie in (0, Nyquist = " +
                                 detail::gm::num(0.5 / rec.dt) + " Hz)");
   const auto sections = detail::gm::butterworth_lowpass(order, f_cut, rec.dt);
   const std::size_t n = rec.acc.size();
@@ -611,14 +611,14 @@ inline void write_columns(const std::string& path, const Record& r) {
 // is limited to half the window.
 [[nodiscard]] inline Record window(const Record& rec, double t_start, double t_end, double taper_seconds = 0) {
   detail::gm::check_record(rec, "window");
-  if (!(t_end >= t_start)) throw std::invalid_argument("window: t_end must not be before t_start");
-  if (!(taper_seconds >= 0)) throw std::invalid_argument("window: taper_seconds must be >= 0");
+  if (!(t_end >= t_start)) throw InputError("window: t_end must not be before t_start");
+  if (!(taper_seconds >= 0)) throw InputError("window: taper_seconds must be >= 0");
   const double eps = 1e-6 * rec.dt;
   // A sample within 1e-6 dt of a bound counts as inside (t / dt is rarely an exact integer).
   const double first = std::max(0.0, std::ceil((t_start - rec.t0) / rec.dt - 1e-6));
   const double last = std::min(double(rec.acc.size() - 1), std::floor((t_end - rec.t0) / rec.dt + 1e-6));
   if (!(last >= first) || rec.time(static_cast<std::size_t>(first)) > t_end + eps)
-    throw std::invalid_argument("window: no sample of '" + rec.name + "' in [" + detail::gm::num(t_start) + ", " +
+    throw InputError("window: no sample of '" + rec.name + "' in [" + detail::gm::num(t_start) + ", " +
                                 detail::gm::num(t_end) + "] s");
   const auto i0 = static_cast<std::size_t>(first), i1 = static_cast<std::size_t>(last);
   Record r = rec;
@@ -673,7 +673,7 @@ struct Spectrum {
 // n periods evenly spaced in log from t_min to t_max (both included).
 [[nodiscard]] inline std::vector<double> log_periods(double t_min, double t_max, int n) {
   if (!(t_min > 0) || !(t_max > t_min) || n < 2)
-    throw std::invalid_argument("log_periods: need 0 < t_min < t_max and n >= 2");
+    throw InputError("log_periods: need 0 < t_min < t_max and n >= 2");
   std::vector<double> p(static_cast<std::size_t>(n));
   const double r = std::log(t_max / t_min) / double(n - 1);
   for (int i = 0; i < n; ++i) p[static_cast<std::size_t>(i)] = t_min * std::exp(r * double(i));
@@ -687,7 +687,7 @@ struct Spectrum {
 // dt and one period of free vibration, where the peak of a short pulse may occur.
 [[nodiscard]] inline Spectrum response_spectrum(const Record& rec, std::vector<double> periods, double zeta = 0.05) {
   detail::gm::check_record(rec, "response_spectrum");
-  if (!(zeta >= 0 && zeta < 1)) throw std::invalid_argument("response_spectrum: zeta must lie in [0, 1)");
+  if (!(zeta >= 0 && zeta < 1)) throw InputError("response_spectrum: zeta must lie in [0, 1)");
   Spectrum s;
   s.zeta = zeta;
   const std::size_t m = periods.size();
@@ -698,7 +698,7 @@ struct Spectrum {
   s.sa.resize(m);
   for (std::size_t p = 0; p < m; ++p) {
     const double T = periods[p];
-    if (!(T > 0) || !std::isfinite(T)) throw std::invalid_argument("response_spectrum: periods must be positive");
+    if (!(T > 0) || !std::isfinite(T)) throw InputError("response_spectrum: periods must be positive");
     const double w = 2.0 * detail::gm::kPi / T;
     const int sub = std::max(1, static_cast<int>(std::ceil(rec.dt / (T / 100.0) - 1e-9)));
     const double h = rec.dt / sub;
@@ -787,21 +787,21 @@ struct SyntheticOptions {
 [[nodiscard]] inline Record synthetic_motion(const SyntheticOptions& o = {}) {
   using detail::gm::kPi;
   if (!(o.dt > 0) || !(o.duration >= 2 * o.dt) || !std::isfinite(o.duration))
-    throw std::invalid_argument("synthetic_motion: need dt > 0 and duration >= 2 dt");
-  if (!(o.pga > 0)) throw std::invalid_argument("synthetic_motion: pga must be positive");
-  if (!(o.zeta_g > 0 && o.zeta_g < 1)) throw std::invalid_argument("synthetic_motion: zeta_g must lie in (0, 1)");
+    throw InputError("synthetic_motion: need dt > 0 and duration >= 2 dt");
+  if (!(o.pga > 0)) throw InputError("synthetic_motion: pga must be positive");
+  if (!(o.zeta_g > 0 && o.zeta_g < 1)) throw InputError("synthetic_motion: zeta_g must lie in (0, 1)");
   if (o.omega_f_ratio > 0 && !(o.zeta_f > 0 && o.zeta_f < 1))
-    throw std::invalid_argument("synthetic_motion: zeta_f must lie in (0, 1)");
+    throw InputError("synthetic_motion: zeta_f must lie in (0, 1)");
   double wg = o.omega_g;
   if (!(wg > 0)) {
     if (!(o.predominant_period > 0))
-      throw std::invalid_argument("synthetic_motion: predominant_period (or omega_g) must be positive");
+      throw InputError("synthetic_motion: predominant_period (or omega_g) must be positive");
     // The Kanai-Tajimi spectrum (1 + 4 z^2 r^2) / ((1 - r^2)^2 + 4 z^2 r^2), r = w / wg, peaks at
     // r^2 = 2 / (1 + sqrt(1 + 8 z^2)), below wg for a damped ground.
     const double r2 = 2.0 / (1.0 + std::sqrt(1.0 + 8.0 * o.zeta_g * o.zeta_g));
     wg = 2.0 * kPi / o.predominant_period / std::sqrt(r2);
   }
-  if (!(wg * o.dt < kPi)) throw std::invalid_argument("synthetic_motion: dt too coarse for the ground frequency");
+  if (!(wg * o.dt < kPi)) throw InputError("synthetic_motion: dt too coarse for the ground frequency");
 
   const auto n = static_cast<std::size_t>(std::llround(o.duration / o.dt)) + 1;
   const double T = o.dt * double(n - 1);
@@ -856,7 +856,7 @@ struct SyntheticOptions {
   }
   double peak = 0;
   for (double x : a) peak = std::max(peak, std::abs(x));
-  if (!(peak > 0)) throw std::invalid_argument("synthetic_motion: the envelope is zero everywhere");
+  if (!(peak > 0)) throw InputError("synthetic_motion: the envelope is zero everywhere");
   for (double& x : a) x *= o.pga / peak;
 
   Record r;
@@ -881,9 +881,9 @@ struct PulseOptions {
 // tau = t - t_peak, fp = 1/Tp, A = amplitude (m/s); the record is its exact derivative (m/s^2).
 [[nodiscard]] inline Record near_fault_pulse(double Tp, double amplitude, const PulseOptions& o = {}) {
   using detail::gm::kPi;
-  if (!(Tp > 0)) throw std::invalid_argument("near_fault_pulse: Tp must be positive");
-  if (!(o.gamma > 1)) throw std::invalid_argument("near_fault_pulse: gamma must be > 1");
-  if (!(o.dt > 0)) throw std::invalid_argument("near_fault_pulse: dt must be positive");
+  if (!(Tp > 0)) throw InputError("near_fault_pulse: Tp must be positive");
+  if (!(o.gamma > 1)) throw InputError("near_fault_pulse: gamma must be > 1");
+  if (!(o.dt > 0)) throw InputError("near_fault_pulse: dt must be positive");
   const double fp = 1.0 / Tp, half = 0.5 * o.gamma * Tp;
   const double tc = o.t_peak > 0 ? o.t_peak : half;
   const double dur = o.duration > 0 ? o.duration : tc + half + 1.0;
@@ -920,5 +920,3 @@ struct PulseOptions {
 }
 
 }  // namespace furniture_fem
-
-namespace ffem = furniture_fem;

@@ -24,6 +24,8 @@
 #include <tuple>
 #include <vector>
 
+#include "../core/errors.hpp"
+
 #define FURNITURE_FEM_FIGURES_INTERNAL
 #include "detail/png_writer.hpp"
 #include "detail/raster.hpp"
@@ -41,7 +43,7 @@ enum class PngCompression {
 // The bytes of a PNG file (RGB, 8 bits per channel, no interlace, filter 0 on every row).
 inline std::vector<std::uint8_t> encode_png(const Image& img, PngCompression mode = PngCompression::fixed_huffman) {
   if (img.w <= 0 || img.h <= 0 || img.rgb.size() != std::size_t(img.w) * std::size_t(img.h) * 3)
-    throw std::invalid_argument("encode_png: image is " + std::to_string(img.w) + "x" + std::to_string(img.h) +
+    throw InputError("encode_png: image is " + std::to_string(img.w) + "x" + std::to_string(img.h) +
                                 " px but holds " + std::to_string(img.rgb.size()) + " bytes");
   const std::size_t row = std::size_t(img.w) * 3;
   std::vector<std::uint8_t> raw;
@@ -67,22 +69,23 @@ inline std::vector<std::uint8_t> encode_png(const Image& img, PngCompression mod
   return out;
 }
 
-// Writes `img` to `path`; throws std::runtime_error naming the path if the image or the file is bad.
+// Writes `img` to `path`; throws InputError (a bad image) or OutputError (a file that cannot be
+// written), naming the path.
 inline void write_png(const std::string& path, const Image& img, PngCompression mode = PngCompression::fixed_huffman) {
   std::vector<std::uint8_t> bytes;
   try {
     bytes = encode_png(img, mode);
   } catch (const std::exception& e) {
-    throw std::runtime_error("write_png '" + path + "': " + e.what());
+    throw InputError("write_png '" + path + "': " + e.what());
   }
   errno = 0;
   std::ofstream f(path, std::ios::binary | std::ios::trunc);
   if (!f)
-    throw std::runtime_error("write_png: cannot open '" + path + "' for writing" +
+    throw OutputError("write_png: cannot open '" + path + "' for writing" +
                              (errno ? std::string(": ") + std::strerror(errno) : std::string()));
   f.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
   f.close();
-  if (!f) throw std::runtime_error("write_png: error while writing '" + path + "'");
+  if (!f) throw OutputError("write_png: error while writing '" + path + "'");
 }
 
 // ================================ colours and ticks ==============================================
@@ -222,7 +225,7 @@ struct AxisSpec {
 
 inline std::pair<double, double> checked_lim(double lo, double hi, const char* who) {
   if (!(lo < hi) || !std::isfinite(lo) || !std::isfinite(hi))
-    throw std::invalid_argument(std::string(who) + ": bad limits [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    throw InputError(std::string(who) + ": bad limits [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
   return {lo, hi};
 }
 
@@ -270,7 +273,7 @@ inline std::pair<double, double> finite_range(const std::vector<double>& v, bool
 inline std::pair<double, double> resolve_range(const AxisSpec& spec, double dmin, double dmax, double margin) {
   if (spec.lim) {
     if (spec.log && !(spec.lim->first > 0))
-      throw std::invalid_argument("plot: log axis limits must be positive, got [" + std::to_string(spec.lim->first) +
+      throw InputError("plot: log axis limits must be positive, got [" + std::to_string(spec.lim->first) +
                                   ", " + std::to_string(spec.lim->second) + "]");
     return *spec.lim;
   }
@@ -344,7 +347,7 @@ inline PlotLayout build_layout(int W, int H, const PlotStyle& st, const LayoutIn
   const int panel_gap = 3 * m.pad;
   const int panel_h = (H - top - bottom - (n - 1) * panel_gap) / std::max(1, n);
   if (panel_h < 4 * m.th)
-    throw std::invalid_argument("plot: " + std::to_string(W) + "x" + std::to_string(H) + " px is too small for " +
+    throw InputError("plot: " + std::to_string(W) + "x" + std::to_string(H) + " px is too small for " +
                                 std::to_string(n) + " panel(s)");
 
   bool any_ylabel = false;
@@ -372,7 +375,7 @@ inline PlotLayout build_layout(int W, int H, const PlotStyle& st, const LayoutIn
     for (const auto& l : xl) need += text_width(l, m.s) + 2 * detail::font_cell_w * m.s;
     if (need <= fw) break;
   }
-  if (fw < 4 * m.th) throw std::invalid_argument("plot: " + std::to_string(W) + " px is too narrow");
+  if (fw < 4 * m.th) throw InputError("plot: " + std::to_string(W) + " px is too narrow");
 
   for (int i = 0; i < n; ++i) {
     PanelLayout& pl = L.panels[std::size_t(i)];
@@ -501,7 +504,7 @@ class LinePlot {
   LinePlot& panel_title(std::string t, int panel) { return at(panel).title = std::move(t), *this; }
   // n stacked panels sharing the x axis; existing panels and their series are kept.
   LinePlot& panels(int n) {
-    if (n < 1) throw std::invalid_argument("LinePlot::panels: need at least one panel, got " + std::to_string(n));
+    if (n < 1) throw InputError("LinePlot::panels: need at least one panel, got " + std::to_string(n));
     panels_.resize(std::size_t(n));
     return *this;
   }
@@ -515,7 +518,7 @@ class LinePlot {
   LinePlot& add(Series s, int panel = 0) {
     Panel& p = at(panel);
     if (s.x.size() != s.y.size())
-      throw std::invalid_argument("LinePlot::add: series '" + s.label + "' has " + std::to_string(s.x.size()) +
+      throw InputError("LinePlot::add: series '" + s.label + "' has " + std::to_string(s.x.size()) +
                                   " x values and " + std::to_string(s.y.size()) + " y values");
     if (!s.color) s.color = s.dashed ? colors::black : palette_color(p.next_color++);
     p.series.push_back(std::move(s));
@@ -574,7 +577,7 @@ class LinePlot {
   };
   Panel& at(int panel) {
     if (panel < 0 || panel >= int(panels_.size()))
-      throw std::out_of_range("LinePlot: panel " + std::to_string(panel) + " does not exist (the plot has " +
+      throw InputError("LinePlot: panel " + std::to_string(panel) + " does not exist (the plot has " +
                               std::to_string(panels_.size()) + "; call panels(n) first)");
     return panels_[std::size_t(panel)];
   }
@@ -773,7 +776,7 @@ class Wireframe3D {
   // Perspective with the eye `distance` bounding-sphere radii from the centre (> 1); off: orthographic.
   Wireframe3D& perspective(bool on = true, double distance = 3.0) {
     if (on && !(distance > 1.0))
-      throw std::invalid_argument("Wireframe3D::perspective: distance must exceed 1 bounding radius, got " +
+      throw InputError("Wireframe3D::perspective: distance must exceed 1 bounding radius, got " +
                                   std::to_string(distance));
     persp_ = on, dist_ = distance;
     return *this;
@@ -784,7 +787,7 @@ class Wireframe3D {
   // One colour per segment, or a single colour for all of them.
   Wireframe3D& add_segments(const std::vector<Segment3>& segs, const std::vector<RGB>& colours) {
     if (colours.size() != segs.size() && colours.size() != 1)
-      throw std::invalid_argument("Wireframe3D::add_segments: " + std::to_string(segs.size()) + " segments but " +
+      throw InputError("Wireframe3D::add_segments: " + std::to_string(segs.size()) + " segments but " +
                                   std::to_string(colours.size()) + " colours (need one per segment, or one)");
     for (std::size_t i = 0; i < segs.size(); ++i) segs_.push_back({segs[i], colours.size() == 1 ? colours[0] : colours[i]});
     return *this;
@@ -798,7 +801,7 @@ class Wireframe3D {
   }
   // Floor rectangle [x0,x1]x[y0,y1] at height z with grid lines every `spacing` (0: about 10 cells).
   Wireframe3D& floor_grid(double x0, double x1, double y0, double y1, double z = 0, double spacing = 0) {
-    if (!(x1 > x0) || !(y1 > y0)) throw std::invalid_argument("Wireframe3D::floor_grid: empty rectangle");
+    if (!(x1 > x0) || !(y1 > y0)) throw InputError("Wireframe3D::floor_grid: empty rectangle");
     if (!(spacing > 0)) spacing = nice_step(std::max(x1 - x0, y1 - y0), 10);
     const RGB c{200, 200, 200};
     // Lines on multiples of the spacing (a room from -0.3 to 4.2 m gets lines at 0, 0.5, ...);
@@ -973,5 +976,3 @@ class Wireframe3D {
 };
 
 }  // namespace furniture_fem
-
-namespace ffem = furniture_fem;

@@ -5,18 +5,16 @@
 // written whole, then flushed every `flush_rows` rows or `flush_seconds`, whichever comes first, so a
 // run killed by Ctrl-C leaves a file whose complete lines are all valid. read_csv() drops a last line
 // that lacks its newline (the row being written when the run died) and reports it via truncated().
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <fstream>
 #include <initializer_list>
-#include <sstream>
 #include <stdexcept>
 #include <string>
-#include <system_error>
 #include <vector>
 
 #include "../core/errors.hpp"
+#include "../core/text.hpp"
 
 namespace furniture_fem {
 
@@ -38,35 +36,14 @@ inline std::string quote(const std::string& s) {
   return out + "\"";
 }
 
-// Splits one line at commas outside quotes; quoted fields lose their quotes ("" -> ").
-inline std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> f(1);
-  bool q = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (q) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') f.back() += '"', ++i;
-      else if (c == '"') q = false;
-      else f.back() += c;
-    } else if (c == '"') q = true;
-    else if (c == ',') f.emplace_back();
-    else f.back() += c;
-  }
-  return f;
-}
-
-inline std::string trim(const std::string& s) {
-  const auto a = s.find_first_not_of(" \t"), b = s.find_last_not_of(" \t");
-  return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
-}
 }  // namespace detail::csv
 
 class CsvWriter {
  public:
   CsvWriter(std::string path, std::vector<std::string> columns, CsvOptions opt = {})
       : path_(std::move(path)), columns_(std::move(columns)), opt_(opt), file_(path_, std::ios::binary | std::ios::trunc) {
-    if (!file_) throw std::runtime_error("CsvWriter: cannot open '" + path_ + "' for writing");
-    if (columns_.empty()) throw std::invalid_argument("CsvWriter '" + path_ + "': no columns");
+    if (!file_) throw OutputError("CsvWriter: cannot open '" + path_ + "' for writing");
+    if (columns_.empty()) throw InputError("CsvWriter '" + path_ + "': no columns");
     for (std::size_t i = 0; i < columns_.size(); ++i) {
       if (i) buf_ += ',';
       buf_ += detail::csv::quote(columns_[i]);
@@ -85,7 +62,7 @@ class CsvWriter {
 
   void row(const double* values, std::size_t n) {
     if (n != columns_.size())
-      throw std::invalid_argument("CsvWriter '" + path_ + "': row " + std::to_string(rows_ + 1) + " has " +
+      throw InputError("CsvWriter '" + path_ + "': row " + std::to_string(rows_ + 1) + " has " +
                                   std::to_string(n) + " values for " + std::to_string(columns_.size()) + " columns");
     char num[64];
     for (std::size_t i = 0; i < n; ++i) {
@@ -110,7 +87,7 @@ class CsvWriter {
     file_.flush();
     pending_ = 0;
     last_flush_ = std::chrono::steady_clock::now();
-    if (!file_) throw std::runtime_error("CsvWriter: error while writing '" + path_ + "'");
+    if (!file_) throw OutputError("CsvWriter: error while writing '" + path_ + "'");
   }
 
   std::size_t rows() const { return rows_; }
@@ -142,37 +119,27 @@ class CsvTable {
 
   const std::vector<double>& column(const std::string& name) const {
     const std::size_t i = find(name);
-    if (i == names_.size()) throw std::out_of_range("CSV '" + path_ + "' has no column '" + name + "'");
+    if (i == names_.size()) throw InputError(path_, 0, name, "the CSV file has no such column");
     return data_[i];
   }
   const std::vector<double>& column(std::size_t i) const { return data_.at(i); }
 
   static CsvTable read(const std::string& path) {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) throw std::runtime_error("read_csv: cannot open '" + path + "'");
-    std::ostringstream ss;
-    ss << f.rdbuf();
-    const std::string text = ss.str();
+    std::string bytes;
+    if (!text::read_file(path, bytes)) throw InputError(path, 0, "", "read_csv: cannot open the file for reading");
+    text::Lines lines = text::split_lines(path, bytes);
+    lines.lines.pop_back();  // the text after the last newline: empty, or the row being written when the run died
 
     CsvTable t;
     t.path_ = path;
-    std::size_t pos = 0;
-    long lineno = 0;
+    t.truncated_ = !bytes.empty() && bytes.back() != '\n';
     bool header = false;
-    while (pos < text.size()) {
-      const std::size_t nl = text.find('\n', pos);
-      ++lineno;
-      if (nl == std::string::npos) {  // unterminated last line: the writer died mid-row
-        t.truncated_ = true;
-        break;
-      }
-      std::string line = text.substr(pos, nl - pos);
-      pos = nl + 1;
-      if (!line.empty() && line.back() == '\r') line.pop_back();
-      if (detail::csv::trim(line).empty() || line[0] == '#') continue;
-      std::vector<std::string> fields = detail::csv::split(line);
+    for (long lineno = 1; lineno <= static_cast<long>(lines.size()); ++lineno) {
+      const std::string& line = lines.line(lineno);
+      if (text::is_blank(line) || line[0] == '#') continue;
+      std::vector<std::string> fields = text::split_fields(line);
       if (!header) {
-        for (auto& s : fields) t.names_.push_back(detail::csv::trim(s));
+        for (auto& s : fields) t.names_.emplace_back(text::trim(s));
         t.data_.resize(t.names_.size());
         header = true;
         continue;
@@ -193,13 +160,10 @@ class CsvTable {
     return i;
   }
   static double parse(const std::string& raw, const std::string& path, long line, const std::string& col) {
-    const std::string s = detail::csv::trim(raw);
+    const std::string_view s = text::trim(raw);
     if (s.empty()) return std::nan("");
-    const char* first = s.data() + (s[0] == '+' ? 1 : 0);
-    double v = 0;
-    const auto r = std::from_chars(first, s.data() + s.size(), v);  // locale-independent, like the writer
-    if (r.ec != std::errc() || r.ptr != s.data() + s.size())
-      throw InputError(path, line, col, "'" + s + "' is not a number");
+    double v = 0;  // locale-independent, like the writer; "nan" and "inf" are what it writes for them
+    if (!text::parse_double(s, v)) throw InputError(path, line, col, "'" + std::string(s) + "' is not a number");
     return v;
   }
   std::string path_;
@@ -211,5 +175,3 @@ class CsvTable {
 inline CsvTable read_csv(const std::string& path) { return CsvTable::read(path); }
 
 }  // namespace furniture_fem
-
-namespace ffem = furniture_fem;

@@ -16,6 +16,8 @@
 #include <system_error>
 #include <vector>
 
+#include "../core/errors.hpp"
+
 namespace furniture_fem {
 
 inline constexpr int vtk_line = 3;  // VTK cell type of a two-node line
@@ -84,19 +86,19 @@ inline void write_atomically(const std::string& path, const std::string& text, c
   const std::string tmp = path + ".tmp";
   {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw std::runtime_error(std::string(who) + ": cannot open '" + tmp + "' for writing");
+    if (!f) throw OutputError(std::string(who) + ": cannot open '" + tmp + "' for writing");
     f.write(text.data(), std::streamsize(text.size()));
     f.close();
-    if (!f) throw std::runtime_error(std::string(who) + ": error while writing '" + tmp + "'");
+    if (!f) throw OutputError(std::string(who) + ": error while writing '" + tmp + "'");
   }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
-  if (ec) throw std::runtime_error(std::string(who) + ": cannot rename '" + tmp + "' to '" + path + "': " + ec.message());
+  if (ec) throw OutputError(std::string(who) + ": cannot rename '" + tmp + "' to '" + path + "': " + ec.message());
 }
 
 inline void check_field(const LineMesh::Field& f, std::size_t count, const char* where, const std::string& path) {
   const auto bad = [&](const std::string& msg) {
-    return std::invalid_argument("write_vtu '" + path + "': " + where + " field '" + f.name + "': " + msg);
+    return InputError("write_vtu '" + path + "': " + where + " field '" + f.name + "': " + msg);
   };
   if (f.components != 1 && f.components != 3) throw bad("components must be 1 or 3, got " + std::to_string(f.components));
   if (f.values.size() != count * std::size_t(f.components))
@@ -137,17 +139,17 @@ inline void put_fields(std::string& out, const std::vector<LineMesh::Field>& fie
 
 }  // namespace detail::vtk
 
-// Writes `mesh` as a .vtu file. Throws std::invalid_argument for an inconsistent mesh (bad index,
-// field of the wrong length, non-finite value) and std::runtime_error if the file cannot be written.
+// Writes `mesh` as a .vtu file. Throws InputError for an inconsistent mesh (bad index,
+// field of the wrong length, non-finite value) and OutputError if the file cannot be written.
 inline void write_vtu(const std::string& path, const LineMesh& mesh) {
   const std::size_t np = mesh.points.size(), nc = mesh.lines.size();
   for (std::size_t i = 0; i < np; ++i)
     if (!mesh.points[i].allFinite())
-      throw std::invalid_argument("write_vtu '" + path + "': point " + std::to_string(i) + " is not finite");
+      throw InputError("write_vtu '" + path + "': point " + std::to_string(i) + " is not finite");
   for (std::size_t c = 0; c < nc; ++c)
     for (int k : mesh.lines[c])
       if (k < 0 || std::size_t(k) >= np)
-        throw std::invalid_argument("write_vtu '" + path + "': line " + std::to_string(c) + " uses point " +
+        throw InputError("write_vtu '" + path + "': line " + std::to_string(c) + " uses point " +
                                     std::to_string(k) + " of " + std::to_string(np));
   for (const auto& f : mesh.point_data) detail::vtk::check_field(f, np, "point", path);
   for (const auto& f : mesh.cell_data) detail::vtk::check_field(f, nc, "cell", path);
@@ -190,7 +192,7 @@ class PvdWriter {
   // Times must increase strictly: a repeated or decreasing time is an output bug.
   PvdWriter& add(double time, const std::string& file) {
     if (!std::isfinite(time) || (!entries_.empty() && !(time > entries_.back().time)))
-      throw std::invalid_argument("PvdWriter '" + path_ + "': time " + std::to_string(time) + " for '" + file +
+      throw InputError("PvdWriter '" + path_ + "': time " + std::to_string(time) + " for '" + file +
                                   "' does not follow " + (entries_.empty() ? "" : std::to_string(entries_.back().time)));
     std::filesystem::path f(file);
     if (f.is_absolute()) {
@@ -227,5 +229,3 @@ class PvdWriter {
 };
 
 }  // namespace furniture_fem
-
-namespace ffem = furniture_fem;

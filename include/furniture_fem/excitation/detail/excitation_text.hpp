@@ -9,36 +9,21 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <string>
 #include <vector>
 
 #include "../../core/errors.hpp"
+#include "../../core/text.hpp"
 
 namespace furniture_fem::detail::gm {
 
 inline constexpr double kPi = 3.14159265358979323846;
 
-inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
-
-inline std::string trim(const std::string& s) {
-  std::size_t b = 0, e = s.size();
-  while (b < e && is_space(s[b])) ++b;
-  while (e > b && is_space(s[e - 1])) --e;
-  return s.substr(b, e - b);
-}
-
-inline bool is_blank(const std::string& s) {
-  for (char c : s)
-    if (!is_space(c)) return false;
-  return true;
-}
-
-inline std::string upper(std::string s) {
-  for (char& c : s)
-    if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
-  return s;
-}
+using text::is_blank;
+using text::is_space;
+// The record readers keep their lines and fields as strings.
+inline std::string trim(std::string_view s) { return std::string(text::trim(s)); }
+inline std::string upper(std::string s) { return text::uppercase(std::move(s)); }
 
 inline bool contains(const std::string& s, const char* what) { return s.find(what) != std::string::npos; }
 
@@ -55,29 +40,23 @@ inline std::string excerpt(const std::string& s, std::size_t max = 40) {
   return out;
 }
 
-// The whole file as lines, CR of CRLF files stripped. Line k (1-based) is lines[k - 1].
-struct TextFile {
-  std::string path;
-  std::vector<std::string> lines;
-
+// The whole file as lines (text::Lines: numbered from 1, CR of CRLF files stripped).
+struct TextFile : text::Lines {
   [[noreturn]] void fail(long line, const std::string& field, const std::string& message) const {
-    throw InputError(path, line, field, message);
+    throw InputError(file, line, field, message);
   }
 };
 
-// Reads the file; an empty (or all-blank) file is an error of every format.
+// Reads the file; an empty (or all-blank) file is an error of every format. A last '\n' ends the
+// last line (it does not start an empty one).
 inline TextFile read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "file", "cannot open for reading");
-  TextFile f{path, {}};
-  std::string line;
+  std::string bytes;
+  if (!text::read_file(path, bytes)) throw InputError(path, 0, "file", "cannot open for reading");
+  if (bytes.rfind("\xEF\xBB\xBF", 0) == 0) bytes.erase(0, 3);  // UTF-8 BOM of CSV exports
+  TextFile f{text::split_lines(path, bytes)};
+  if (!bytes.empty() && bytes.back() == '\n') f.lines.pop_back();
   bool blank = true;
-  while (std::getline(in, line)) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (f.lines.empty() && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // UTF-8 BOM of CSV exports
-    if (blank && !is_blank(line)) blank = false;
-    f.lines.push_back(std::move(line));
-  }
+  for (const auto& line : f.lines) blank = blank && is_blank(line);
   if (blank) f.fail(1, "file", "empty file: no header and no samples");
   return f;
 }
