@@ -36,7 +36,7 @@ template <class Solver>
 void BM_Step(benchmark::State& state) {
   const Model m = grid_bodies(static_cast<int>(state.range(0)));
   SimulationOptions o;
-  o.refresh_interval = static_cast<int>(state.range(1));
+  o.refresh_interval_steps = static_cast<int>(state.range(1));
   Simulation<AsiGaussTimoshenko, Newmark, Solver> sim(m, Newmark::paper(), o);
   sim.set_table_acceleration([](double t) { return Vec3(3 * std::sin(10 * t), 0, 0); });
   sim.step();

@@ -4,7 +4,7 @@
 //               [--haga EW NS UD] [--haga-window START END] [--vtu-every N] [--iterate]
 //               [--refresh-every S]
 //
-// Cases, as in the paper (FORMULATION.md section 7):
+// Cases, as in the paper (section 5 of the reference paper):
 //   kobe50_1d   (i)   50 % JMA-Kobe, 1-D (NS along X)
 //   kobe100_1d  (ii)  100 % JMA-Kobe, 1-D
 //   kobe100_3d  (iii) 100 % JMA-Kobe, 3-D (NS along X, EW along Y, UD along Z)
@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
       auto next = [&]() -> std::string {
-        if (i + 1 >= argc) throw std::invalid_argument("option " + a + " needs a value");
+        if (i + 1 >= argc) throw InputError("command line", 0, a, "needs a value");
         return argv[++i];
       };
       if (a == "--records") records = next();
@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
         const double s = std::stod(next()), e = std::stod(next());
         haga_window = std::pair{s, e};
       } else if (a == "-h" || a == "--help") return usage();
-      else throw std::invalid_argument("unknown argument " + a);
+      else throw InputError("command line", 0, a, "unknown argument");
     }
     if (scenes.empty() || results.empty() || (kobe && records.empty())) return usage();
     fs::create_directories(scenes);
@@ -117,7 +117,7 @@ int main(int argc, char** argv) {
     double haga_start = 0, haga_end = 0;
     if (!haga.empty()) {
       for (const auto& f : haga)
-        if (!fs::is_regular_file(f)) throw std::invalid_argument("KiK-net file not found: " + f);
+        if (!fs::is_regular_file(f)) throw InputError(f, 0, "", "KiK-net file not found");
       if (haga_window) {
         std::tie(haga_start, haga_end) = *haga_window;
       } else {

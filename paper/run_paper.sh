@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs the paper's study (section 5 of the reference paper; FORMULATION.md section 7) with
+# Runs the paper's study (section 5 of the reference paper) with
 # furniture_quake and writes paper/results/<case>/ plus the comparison figures in paper/results/.
 #
 #   bash paper/run_paper.sh [--configs 1,2,3] [--cases kobe50_1d,kobe100_1d,kobe100_3d,haga100_3d]

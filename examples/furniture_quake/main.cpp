@@ -41,18 +41,30 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
       auto next = [&]() -> std::string {
-        if (i + 1 >= argc) throw std::invalid_argument("option " + a + " needs a value");
+        if (i + 1 >= argc) throw InputError("command line", 0, a, "needs a value");
         return argv[++i];
       };
+      // A number with nothing after it ("0.05xyz" and "nan" are refused), named in the error.
+      auto number = [&]() {
+        const std::string w = next();
+        double x = 0;
+        if (!text::parse_finite(w, x)) throw InputError("command line", 0, a, "not a finite number: '" + w + "'");
+        return x;
+      };
       if (a == "--out") out_dir = next();
-      else if (a == "--duration") duration = std::stod(next());
-      else if (a == "--output-interval") opt.output_interval = std::stod(next());
+      else if (a == "--duration") duration = number();
+      else if (a == "--output-interval") opt.output_interval = number();
       else if (a == "--no-figures") opt.figures = false;
       else if (a == "--quiet") opt.progress = false;
-      else if (a == "--config") config = std::stoi(next());
+      else if (a == "--config") {
+        const std::string w = next();
+        long k = 0;
+        if (!text::parse_integer(w, k) || k < 1 || k > 3) throw InputError("command line", 0, a, "not 1, 2 or 3: '" + w + "'");
+        config = static_cast<int>(k);
+      }
       else if (a == "--records") records = next();
       else if (a == "-h" || a == "--help") return usage();
-      else if (!a.empty() && a[0] == '-') throw std::invalid_argument("unknown option " + a);
+      else if (!a.empty() && a[0] == '-') throw InputError("command line", 0, a, "unknown option");
       else scene_path = a;
     }
     SceneSpec spec;

@@ -74,7 +74,7 @@ TEST_CASE("negative or NaN parameters throw naming the field", "[contact][laws]"
   auto message_of = [](const ContactParams& p) {
     try {
       p.validate();
-    } catch (const std::invalid_argument& e) {
+    } catch (const ModelError& e) {
       return std::string(e.what());
     }
     return std::string("no throw");

@@ -1,4 +1,4 @@
-// Base excitation in the full solver (FORMULATION section 6: the table frame, every mass gets
+// Base excitation in the full solver (docs/contact/contact.md: the table frame, every mass gets
 // -m a_table), on a fixed elastic cantilever without contact:
 //  8. a constant table acceleration bends it like a uniform load -rho A a (closed form); a record
 //     scaled by 0.5 gives exactly half the response (linearity); a 1-D record and the same record as

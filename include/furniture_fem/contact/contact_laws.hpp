@@ -8,7 +8,7 @@
 //   ContactState                            per-contact history kept by the caller across steps
 //   evaluate_segment_pair / evaluate_node_plane / evaluate_node_rectangle   pair-level helpers
 //
-// The paper's law (FORMULATION section 5, eqs. 1-4), with g = 1 - l/L the penetration ratio:
+// The paper's law (its eqs. 1-4; docs/contact/contact.md), with g = 1 - l/L the penetration ratio:
 //   F_p = alpha g^q n,   F_T = -mu alpha g^q v_T/|v_T|,   F_N = -Dc g^q v_N/|v_N|     (l <= L)
 // Each part below says which formula it evaluates and how it regularises v/|v| near zero speed.
 // See docs/contact/contact.md for the choices, the presets and how to write a new part or law.
@@ -59,7 +59,7 @@ struct ContactParams {
   double hc_damping = 0;  // s/m: Hunt-Crossley damping factor (HuntCrossley)
 
   // Negative, NaN or infinite values, and q <= 0 (a force that jumps at first touch), throw
-  // std::invalid_argument naming the field and the value.
+  // ModelError naming the field and the value.
   void validate() const {
     const std::pair<const char*, double> fields[] = {
         {"alpha", alpha}, {"q", q},         {"Dc", Dc},         {"mu", mu},         {"mu_long", mu_long},
@@ -67,9 +67,9 @@ struct ContactParams {
         {"c_lin", c_lin}, {"k_hc", k_hc},   {"hc_damping", hc_damping}};
     for (const auto& [name, value] : fields)
       if (!std::isfinite(value) || value < 0)
-        throw std::invalid_argument(std::string("ContactParams: ") + name + " must be finite and non-negative (got " +
-                                    detail::fmt(value) + ")");
-    if (!(q > 0)) throw std::invalid_argument("ContactParams: q must be positive (got " + detail::fmt(q) + ")");
+        throw ModelError(std::string("ContactParams: ") + name + " must be finite and non-negative (got " +
+                         detail::fmt(value) + ")");
+    if (!(q > 0)) throw ModelError("ContactParams: q must be positive (got " + detail::fmt(q) + ")");
   }
 
   // The paper's rules (Table 4): alpha = the item's weight (given in kgf, stored in N), q = 1,
@@ -296,12 +296,12 @@ struct RegularisedCoulomb {
 struct StickSlip {
   FrictionNormal normal = FrictionNormal::penalty;
   static void check(const ContactParams& p) {
-    if (!(p.k_t > 0)) throw std::invalid_argument("StickSlip: k_t must be positive (got " + detail::fmt(p.k_t) + ")");
+    if (!(p.k_t > 0)) throw ModelError("StickSlip: k_t must be positive (got " + detail::fmt(p.k_t) + ")");
   }
   TangentialForce force(const ContactKinematics& k, const ContactParams& p, const NormalForceParts& nf, const Vec3& v_t,
                         ContactState& state) const {
     // dt = 0 (a static solve) leaves the spring where it is; a negative or NaN step is a bug.
-    if (!(k.dt >= 0)) throw std::invalid_argument("StickSlip: ContactKinematics::dt must be non-negative (got " + detail::fmt(k.dt) + ")");
+    if (!(k.dt >= 0)) throw ModelError("StickSlip: ContactKinematics::dt must be non-negative (got " + detail::fmt(k.dt) + ")");
     const double N = detail::friction_normal_force(nf, normal);
     Vec3 e = state.elongation;
     const double len = e.norm();

@@ -46,7 +46,6 @@ struct SimulationOptions {
   // Refresh (assemble and factorise) each body's matrix every this many steps (1: every step);
   // between refreshes the factorisation is reused with the body's rigid rotation taken out.
   int refresh_interval_steps = 1;
-  int refresh_interval = 0;     // the old name of refresh_interval_steps: used when > 0 (to be removed)
   bool geometric_stiffness = true;
   bool finite_rotation_update = true;  // put each free body's rigid turn of a step on the finite rotation
   bool check_finite = true;     // stop with a diagnosis on NaN / divergence
@@ -116,8 +115,6 @@ class Simulation {
       : model_(model), integrator_(integrator), opt_(options), coef_(integrator.coefficients()),
         contact_(std::move(contact)) {
     model_.validate();
-    if (opt_.refresh_interval > 0) opt_.refresh_interval_steps = opt_.refresh_interval;
-    opt_.refresh_interval = 0;
     if (!(opt_.dt > 0) || !std::isfinite(opt_.dt))
       throw ModelError("simulation: dt must be positive and finite (got " + detail::fmt(opt_.dt) + ")");
     if constexpr (Element::needs_pairs) {

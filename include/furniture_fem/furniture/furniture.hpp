@@ -93,7 +93,7 @@ inline const PaperItemData& paper_item(PaperItem item) {
 // Contact parameters of an item (SI units)
 // ---------------------------------------------------------------------------------------------------
 
-// The paper's contact law (FORMULATION.md section 5) needs, per item: the penalty coefficient alpha,
+// The paper's contact law (the paper's eqs. 1-4, docs/contact/contact.md) needs, per item: the penalty coefficient alpha,
 // the damping coefficient Dc (both forces, N), the penalty index q, and dynamic friction against the
 // floor along the item's longer and shorter edges, against the walls and against other items.
 struct ItemContact {

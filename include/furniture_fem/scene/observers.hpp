@@ -44,7 +44,7 @@ namespace detail {
 
 inline void write_text(const std::string& path, const std::string& text) {
   std::ofstream f(path);
-  if (!f) throw std::runtime_error("cannot write " + path);
+  if (!f) throw OutputError("cannot write " + path);
   f << text;
 }
 

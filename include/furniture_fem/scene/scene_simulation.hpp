@@ -252,8 +252,9 @@ struct SceneSimulation {
   std::unique_ptr<Sim> sim;
   std::vector<int> rigid_bodies;
 
-  // refresh_interval 0: the scene's (SceneSpec::refresh_every, in steps); threads 0: all hardware threads.
-  explicit SceneSimulation(const SceneSpec& spec, int refresh_interval = 0, int threads = 0) {
+  // refresh_interval_steps 0: the scene's (SceneSpec::refresh_every, converted to steps); threads 0: all
+  // hardware threads.
+  explicit SceneSimulation(const SceneSpec& spec, int refresh_interval_steps = 0, int threads = 0) {
     items = build_scene(spec, *model);
     motion = scene_table_motion(spec);
     RoomContact<Law> contact(*model, scene_body_contacts(spec, *model, items), scene_planes(spec));
@@ -277,7 +278,7 @@ struct SceneSimulation {
     integrator.mode = spec.integrator.iterate_to_equilibrium ? EquilibriumMode::iterate : EquilibriumMode::carry_over;
     SimulationOptions so;
     so.dt = spec.dt;
-    so.refresh_interval = refresh_interval > 0 ? refresh_interval : spec.refresh_interval_steps();
+    so.refresh_interval_steps = refresh_interval_steps > 0 ? refresh_interval_steps : spec.refresh_interval_steps();
     so.threads = threads;
     sim = std::make_unique<Sim>(*model, integrator, so, std::move(contact));
     const TableMotion* m = &motion;
