@@ -8,15 +8,14 @@
 
 #include "furniture_fem/figures/plot.hpp"
 #include "png_reader.hpp"
+#include "../support/test_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace furniture_fem;
 
+using ffem_test::tmp;
+
 namespace {
-std::string tmp(const std::string& name) {
-  fs::create_directories(FFEM_TEST_TMP);
-  return (fs::path(FFEM_TEST_TMP) / name).string();
-}
 RGB px(const png_test::Png& p, int x, int y) { return {p.at(x, y, 0), p.at(x, y, 1), p.at(x, y, 2)}; }
 bool near_colour(const png_test::Png& p, int x, int y, RGB c, int radius = 1) {
   for (int dy = -radius; dy <= radius; ++dy)

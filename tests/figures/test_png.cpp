@@ -9,15 +9,14 @@
 
 #include "furniture_fem/figures/plot.hpp"
 #include "png_reader.hpp"
+#include "../support/test_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace furniture_fem;
 
+using ffem_test::tmp;
+
 namespace {
-std::string tmp(const std::string& name) {
-  fs::create_directories(FFEM_TEST_TMP);
-  return (fs::path(FFEM_TEST_TMP) / name).string();
-}
 const std::uint8_t* bytes(const char* s) { return reinterpret_cast<const std::uint8_t*>(s); }
 
 // Every pixel different, so any misplaced byte is caught.

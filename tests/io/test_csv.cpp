@@ -8,21 +8,15 @@
 #include <string>
 
 #include "furniture_fem/io/csv.hpp"
+#include "../support/test_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace furniture_fem;
 
+using ffem_test::slurp;
+using ffem_test::tmp;
+
 namespace {
-std::string tmp(const std::string& name) {
-  fs::create_directories(FFEM_TEST_TMP);
-  return (fs::path(FFEM_TEST_TMP) / name).string();
-}
-std::string slurp(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
 void spit(const std::string& path, const std::string& text) {
   std::ofstream f(path, std::ios::binary | std::ios::trunc);
   f << text;

@@ -8,21 +8,15 @@
 #include <string>
 
 #include "furniture_fem/io/vtk.hpp"
+#include "../support/test_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace furniture_fem;
 
+using ffem_test::slurp;
+using ffem_test::tmp;
+
 namespace {
-std::string tmp(const std::string& name) {
-  fs::create_directories(FFEM_TEST_TMP);
-  return (fs::path(FFEM_TEST_TMP) / name).string();
-}
-std::string slurp(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
 std::size_t count(const std::string& s, const std::string& what) {
   std::size_t n = 0;
   for (auto p = s.find(what); p != std::string::npos; p = s.find(what, p + 1)) ++n;
