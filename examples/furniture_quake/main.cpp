@@ -6,8 +6,8 @@
 //   furniture_quake [scene.json] [--out DIR] [--duration S] [--output-interval S] [--no-figures]
 //                   [--quiet] [--config K] [--records DIR]
 //
-// Ctrl-C stops the run cleanly: everything written so far stays readable and the summary says
-// where it stopped.
+// Ctrl-C stops the run cleanly: everything written so far stays readable, the summary says where it
+// stopped, and the exit code is 130. Exit codes: 0 completed, 1 bad input, 3 diverged, 130 stopped.
 #include <furniture_fem/scene/scene_runner.hpp>
 
 #include <atomic>
@@ -20,14 +20,15 @@ namespace {
 std::atomic<bool> g_stop{false};
 void on_interrupt(int) { g_stop = true; }
 
-int usage() {
-  std::cerr << "usage: furniture_quake [scene.json] [--out DIR] [--duration S] [--output-interval S] [--no-figures]\n"
+// --help: the usage on stdout, exit 0 (a bad command line is an error on stderr, exit 1).
+int print_help() {
+  std::cout << "usage: furniture_quake [scene.json] [--out DIR] [--duration S] [--output-interval S] [--no-figures]\n"
                "                       [--quiet] [--config K] [--records DIR]\n"
                "  without a scene: configuration 3 under the built-in synthetic 3-D motion, 10 s\n"
                "  --output-interval S: history rows every S seconds of simulated time (default 0.01)\n"
                "  --config K: the paper's configuration K (1, 2, 3) with the JMA-Kobe records in\n"
                "              --records DIR (default ../shared/ground_motions)\n";
-  return 2;
+  return 0;
 }
 }  // namespace
 
@@ -63,7 +64,7 @@ int main(int argc, char** argv) {
         config = static_cast<int>(k);
       }
       else if (a == "--records") records = next();
-      else if (a == "-h" || a == "--help") return usage();
+      else if (a == "-h" || a == "--help") return print_help();
       else if (!a.empty() && a[0] == '-') throw InputError("command line", 0, a, "unknown option");
       else scene_path = a;
     }
@@ -100,6 +101,8 @@ int main(int argc, char** argv) {
                   it.slide, it.tilt_deg, it.max_tilt_deg, it.resting_on.empty() ? "" : "  on ",
                   it.resting_on.c_str());
     std::printf("  results in %s\n", s.out_dir.c_str());
+    // A stopped run is not a complete one: scripts see 130 (the shell's code for Ctrl-C).
+    if (s.status == "stopped") return 130;
     return s.status == "diverged" ? 3 : 0;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
