@@ -195,9 +195,11 @@ TEST_CASE("spring-dashpot impact of a rigid block falling flat: restitution exp(
            (e_coarse - e_closed) / (e_fine - e_closed), e_drop, e_forced, 100 * (e_drop / e_forced - 1), drop.g_max);
     CHECK_THAT(e_fine, WithinRel(e_closed, 0.03));     // the brief's 3%: +0.9 to +1.0% measured
     CHECK_THAT(e_drop, WithinRel(e_forced, 0.03));     // +1.1 to +2.0% measured
-    // First order in dt: halving dt halves the error (2.1 and 2.4 measured).
+    // Between first and second order in dt: the dashpot is inside the implicit step, the contact's
+    // onset and release (a switch within a step) are not: 2.7 and 3.3 measured (2.1 and 2.4 with the
+    // dashpot applied explicitly).
     CHECK((e_coarse - e_closed) / (e_fine - e_closed) > 1.6);
-    CHECK((e_coarse - e_closed) / (e_fine - e_closed) < 3.0);
+    CHECK((e_coarse - e_closed) / (e_fine - e_closed) < 4.2);
     CHECK(fine.g_max < 1);
     CHECK(drop.g_max < 1);
   }

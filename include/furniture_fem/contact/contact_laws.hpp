@@ -53,6 +53,10 @@ struct ContactParams {
   double k_t = 0;         // N/m: tangential stick spring (StickSlip)
   double c_t = 0;         // N s/m: tangential dashpot acting while sticking (StickSlip)
   double v_reg = 1e-3;    // m/s: regularisation speed of v/|v| (0: the exact sign, sign(0) = 0)
+  // m: elastic range of the stick spring that lets Coulomb friction hold still (k_t = mu N / stick_length,
+  // return mapping; docs/contact/implicit_contact.md). 0: friction regularised by v_reg instead (it creeps).
+  // StickSlip has its own spring (k_t, c_t) and ignores it.
+  double stick_length = 0;
   double k_lin = 0;       // N/m: linear normal spring (LinearSpring)
   double c_lin = 0;       // N s/m: viscous normal damping (ViscousDamping)
   double k_hc = 0;        // N/m^1.5: Hunt-Crossley stiffness (HuntCrossley)
@@ -64,7 +68,7 @@ struct ContactParams {
     const std::pair<const char*, double> fields[] = {
         {"alpha", alpha}, {"q", q},         {"Dc", Dc},         {"mu", mu},         {"mu_long", mu_long},
         {"mu_short", mu_short}, {"k_t", k_t}, {"c_t", c_t},     {"v_reg", v_reg},   {"k_lin", k_lin},
-        {"c_lin", c_lin}, {"k_hc", k_hc},   {"hc_damping", hc_damping}};
+        {"c_lin", c_lin}, {"k_hc", k_hc},   {"hc_damping", hc_damping}, {"stick_length", stick_length}};
     for (const auto& [name, value] : fields)
       if (!std::isfinite(value) || value < 0)
         throw ModelError(std::string("ContactParams: ") + name + " must be finite and non-negative (got " +
@@ -107,9 +111,12 @@ struct ContactState {
   Vec3 normal = Vec3::Zero();      // last contact normal (orients a degenerate normal); 0: none yet
 };
 
-// The force of one contact, on A (B receives -on_a).
+// The force of one contact, on A (B receives -on_a), and its linearisation for an implicit step:
+// on_a(x_a + dx, v_a + dv) ~ on_a - K dx - C dv (A's contact point moved, B held).
 struct ContactForce {
   Vec3 on_a = Vec3::Zero();
+  Mat3 K = Mat3::Zero();   // N/m: stiffness (the normal part's slope along n)
+  Mat3 C = Mat3::Zero();   // N s/m: damping and friction slopes (a stick spring acts through v dt)
   double normal = 0;       // component of on_a along n: positive pushes apart, negative pulls
   double tangential = 0;   // magnitude of the tangential part
   bool sticking = false;   // friction in its stick regime (see each friction part)
@@ -127,6 +134,7 @@ struct NormalForceParts {
 struct TangentialForce {
   Vec3 on_a = Vec3::Zero();
   bool sticking = false;
+  Mat3 C = Mat3::Zero();  // -d on_a / d v_t, the slope an implicit step uses
 };
 
 // Which normal force scales friction. The paper scales friction by the penalty part alpha g^q
@@ -157,17 +165,80 @@ inline Vec3 regularised_direction(const Vec3& v, double v_reg, SignRegularisatio
   return v * regularised_scale(v.norm(), v_reg, kind);
 }
 inline double power(double g, double q) { return q == 1.0 ? g : std::pow(g, q); }
+
+// -d/dv of v * regularised_scale(|v|): phi P + phi'(s) s t t^T on the tangent plane (P = I - n n^T),
+// phi the scale, s = |v|, t = v/s. Zero where the scale has no finite slope (v_reg = 0 at rest).
+inline Mat3 regularised_slope(const Vec3& v, const Vec3& n, double v_reg, SignRegularisation kind) {
+  const Mat3 P = Mat3::Identity() - n * n.transpose();
+  const double s = v.norm();
+  if (v_reg <= 0 && s <= 0) return Mat3::Zero();
+  if (s <= 1e-12 * std::max(v_reg, 1e-300)) return P / v_reg;
+  const Vec3 t = v / s;
+  const double phi = regularised_scale(s, v_reg, kind);
+  double dphi = 0;  // d phi / d s
+  if (kind == SignRegularisation::tanh && v_reg > 0) {
+    const double th = std::tanh(s / v_reg);
+    dphi = (1 - th * th) / (v_reg * s) - th / (s * s);
+  } else if (s >= v_reg) {
+    dphi = -1 / (s * s);
+  }
+  return phi * P + dphi * s * t * t.transpose();
+}
+
+// The elongation of a stick spring carried into the current tangent plane (its normal component
+// removed, its length kept, so a rotating contact keeps its spring force).
+inline Vec3 in_tangent_plane(const Vec3& e, const Vec3& n) {
+  const double len = e.norm();
+  if (!(len > 0)) return Vec3::Zero();
+  const Vec3 t = e - e.dot(n) * n;
+  const double in_plane = t.norm();
+  return in_plane > 1e-12 * len ? Vec3(t * (len / in_plane)) : Vec3::Zero();
+}
+
+// Coulomb friction by return mapping, as in elastoplasticity (Wriggers, Computational Contact
+// Mechanics, ch. 5): a stick spring k_t (and dashpot c_t) predicts the force, e* = e + v_t dt,
+// F* = -k_t e* - c_t v_t; inside the cone |F*| <= mu N it sticks (F = F*), outside it slips on the cone
+// (F = mu N F*/|F*|, the spring reset to -F/k_t so that a reversal sticks at once). mu_of(d) is the
+// coefficient for a sliding direction d (a unit vector, or zero when there is none). The slope is
+// the consistent one: (k_t dt + c_t) P in stick, scaled by mu N/|F*| and without the sliding
+// direction in slip. At rest the spring holds: no creep below mu N.
+template <class MuOf>
+TangentialForce coulomb_return_map(const ContactKinematics& k, double N, double k_t, double c_t, const Vec3& v_t,
+                                   ContactState& state, MuOf&& mu_of) {
+  const Vec3 e_trial = in_tangent_plane(state.elongation, k.n) + v_t * k.dt;
+  const Vec3 f_trial = -k_t * e_trial - c_t * v_t;
+  const double f_norm = f_trial.norm();
+  const double limit = mu_of(f_norm > 0 ? Vec3(-f_trial / f_norm) : Vec3::Zero()) * N;
+  const Mat3 P = Mat3::Identity() - k.n * k.n.transpose();
+  const double c_stick = k_t * k.dt + c_t;
+  if (f_norm <= limit) {
+    state.elongation = e_trial;
+    state.sticking = true;
+    return {f_trial, true, c_stick * P};
+  }
+  const Vec3 t = f_trial / f_norm;
+  const Vec3 f = limit * t;
+  state.elongation = k_t > 0 ? Vec3(-f / k_t) : Vec3::Zero();  // the dashpot's share is not stored
+  state.sticking = false;
+  return {f, false, (limit / f_norm) * c_stick * (P - t * t.transpose())};
+}
 }  // namespace detail
 
 // ---------------------------------------------------------------------------------------------
 // Normal parts: force(k, params, g, v_n) -> force along n on A (positive pushes apart).
-// v_n = v . n is the normal relative speed: negative while approaching.
+// v_n = v . n is the normal relative speed: negative while approaching. Optional slopes for the
+// implicit step: stiffness() = -d force / d l, damping() = -d force / d v_n (a part without them is
+// explicit: its force enters the step as a load).
 
 // Paper eq. 1: alpha g^q. q = 1 is the paper's choice, q = 1.5 Hertz-like; any q > 0 works.
 struct PowerPenalty {
   static constexpr bool paper_equation = true;
   double force(const ContactKinematics&, const ContactParams& p, double g, double) const {
     return p.alpha * detail::power(g, p.q);
+  }
+  // q < 1 has an infinite slope at first touch: taken at g >= 1e-3.
+  double stiffness(const ContactKinematics& k, const ContactParams& p, double g, double) const {
+    return p.q == 1.0 ? p.alpha / k.L : p.alpha * p.q * std::pow(std::max(g, 1e-3), p.q - 1) / k.L;
   }
 };
 
@@ -176,6 +247,7 @@ struct LinearSpring {
   double force(const ContactKinematics& k, const ContactParams& p, double, double) const {
     return p.k_lin * (k.L - k.l);
   }
+  double stiffness(const ContactKinematics&, const ContactParams& p, double, double) const { return p.k_lin; }
 };
 
 // Hunt-Crossley: k_hc d^1.5 (1 + 1.5 hc_damping d'), with d = L - l the overlap and d' = -v_n its
@@ -186,6 +258,14 @@ struct HuntCrossley {
   double force(const ContactKinematics& k, const ContactParams& p, double, double v_n) const {
     const double d = k.L - k.l;
     return p.k_hc * d * std::sqrt(d) * (1.0 + 1.5 * p.hc_damping * (-v_n));
+  }
+  double stiffness(const ContactKinematics& k, const ContactParams& p, double, double v_n) const {
+    const double d = k.L - k.l;
+    return std::max(0.0, 1.5 * p.k_hc * std::sqrt(d) * (1.0 + 1.5 * p.hc_damping * (-v_n)));
+  }
+  double damping(const ContactKinematics& k, const ContactParams& p, double, double) const {
+    const double d = k.L - k.l;
+    return 1.5 * p.hc_damping * p.k_hc * d * std::sqrt(d);
   }
 };
 
@@ -200,11 +280,22 @@ struct PaperSignDamping {
   double force(const ContactKinematics&, const ContactParams& p, double g, double v_n) const {
     return -p.Dc * detail::power(g, p.q) * detail::regularised_sign(v_n, p.v_reg, regularisation);
   }
+  // The set-valued sign at v_n = 0, taken implicitly as the dashpot it is at the evaluated speed
+  // (the secant Dc g^q scale(|v_n|), Dc g^q / v_reg inside the ramp): linearised so, the force falls
+  // with the speed within the step instead of switching sign a step late, and a resting contact does
+  // not chatter (the consistent slope, zero outside the ramp, would leave the switch explicit).
+  double damping(const ContactKinematics&, const ContactParams& p, double g, double v_n) const {
+    const double speed = std::abs(v_n);
+    const double secant = speed > 0 ? detail::regularised_scale(speed, p.v_reg, regularisation)
+                                    : (p.v_reg > 0 ? 1.0 / p.v_reg : 0.0);
+    return p.Dc * detail::power(g, p.q) * secant;
+  }
 };
 
 // -c_lin v_n: a linear dashpot.
 struct ViscousDamping {
   double force(const ContactKinematics&, const ContactParams& p, double, double v_n) const { return -p.c_lin * v_n; }
+  double damping(const ContactKinematics&, const ContactParams& p, double, double) const { return p.c_lin; }
 };
 
 struct NoDamping {
@@ -215,18 +306,24 @@ struct NoDamping {
 // Friction parts: force(k, params, normal parts, v_t, state) -> tangential force on A.
 // v_t is the tangential relative velocity (v minus its normal part).
 
-// Paper eq. 3: -mu N v_T/|v_T| with N = alpha g^q (the penalty part, as the paper writes it),
-// regularised as chosen (default ramp). "Sticking" means |v_T| < v_reg, inside the ramp.
+// Paper eq. 3: -mu N v_T/|v_T| with N = alpha g^q (the penalty part, as the paper writes it). With
+// p.stick_length > 0 the sign at v_T = 0 is set-valued, |F_T| <= mu N, solved by return mapping
+// (holds still below mu N); with stick_length = 0 it is regularised as chosen (default ramp), and
+// "sticking" means |v_T| < v_reg, inside the ramp (it creeps).
 struct PaperSignFriction {
   static constexpr bool paper_equation = true;
   SignRegularisation regularisation = SignRegularisation::ramp;
   FrictionNormal normal = FrictionNormal::penalty;
-  TangentialForce force(const ContactKinematics&, const ContactParams& p, const NormalForceParts& nf, const Vec3& v_t,
+  TangentialForce force(const ContactKinematics& k, const ContactParams& p, const NormalForceParts& nf, const Vec3& v_t,
                         ContactState& state) const {
     const double N = detail::friction_normal_force(nf, normal);
+    if (p.stick_length > 0)
+      return detail::coulomb_return_map(k, N, p.mu * N / p.stick_length, 0.0, v_t, state,
+                                        [&](const Vec3&) { return p.mu; });
     state.elongation.setZero();
     state.sticking = v_t.norm() < p.v_reg;
-    return {-p.mu * N * detail::regularised_direction(v_t, p.v_reg, regularisation), state.sticking};
+    return {-p.mu * N * detail::regularised_direction(v_t, p.v_reg, regularisation), state.sticking,
+            p.mu * N * detail::regularised_slope(v_t, k.n, p.v_reg, regularisation)};
   }
 };
 
@@ -248,36 +345,47 @@ struct AnisotropicFloor {
     const double den = std::sqrt(p.mu_short * p.mu_short * cos_phi * cos_phi + p.mu_long * p.mu_long * sin_phi * sin_phi);
     return den > 0 ? p.mu_long * p.mu_short / den : 0.0;
   }
+  // The coefficient for sliding along d (any length; zero: mu_long).
+  static double mu_along(const ContactKinematics& k, const ContactParams& p, const Vec3& d) {
+    const Vec3 axis = k.long_axis - k.long_axis.dot(k.n) * k.n;
+    const double axis_len = axis.norm(), speed = d.norm();
+    if (!(speed > 0) || !(axis_len > 1e-12 * std::max(1.0, k.long_axis.norm()))) return p.mu_long;
+    const double c = std::clamp(d.dot(axis) / (speed * axis_len), -1.0, 1.0);
+    return mu_for_direction(p, c, std::sqrt(std::max(0.0, 1.0 - c * c)));
+  }
   TangentialForce force(const ContactKinematics& k, const ContactParams& p, const NormalForceParts& nf, const Vec3& v_t,
                         ContactState& state) const {
     const double N = detail::friction_normal_force(nf, normal);
+    if (p.stick_length > 0)
+      return detail::coulomb_return_map(k, N, std::max(p.mu_long, p.mu_short) * N / p.stick_length, 0.0, v_t, state,
+                                        [&](const Vec3& d) { return mu_along(k, p, d); });
     state.elongation.setZero();
-    const double speed = v_t.norm();
-    state.sticking = speed < p.v_reg;
-    double mu = p.mu_long;
-    const Vec3 axis = k.long_axis - k.long_axis.dot(k.n) * k.n;
-    const double axis_len = axis.norm();
-    if (speed > 0 && axis_len > 1e-12 * std::max(1.0, k.long_axis.norm())) {
-      const double c = std::clamp(v_t.dot(axis) / (speed * axis_len), -1.0, 1.0);
-      mu = mu_for_direction(p, c, std::sqrt(std::max(0.0, 1.0 - c * c)));
-    }
-    return {-mu * N * detail::regularised_direction(v_t, p.v_reg, regularisation), state.sticking};
+    state.sticking = v_t.norm() < p.v_reg;
+    const double mu = mu_along(k, p, v_t);
+    return {-mu * N * detail::regularised_direction(v_t, p.v_reg, regularisation), state.sticking,
+            mu * N * detail::regularised_slope(v_t, k.n, p.v_reg, regularisation)};
   }
 };
 
 // Coulomb friction with a smooth regularisation: -mu N v_T / sqrt(|v_T|^2 + v_reg^2), N the total
 // normal force (compressive part). Below v_reg it acts like a stiff dashpot, so a block under a
-// small force creeps slowly; StickSlip avoids that.
+// small force creeps slowly; with p.stick_length > 0 it sticks by return mapping instead.
 struct RegularisedCoulomb {
   FrictionNormal normal = FrictionNormal::total;
-  TangentialForce force(const ContactKinematics&, const ContactParams& p, const NormalForceParts& nf, const Vec3& v_t,
+  TangentialForce force(const ContactKinematics& k, const ContactParams& p, const NormalForceParts& nf, const Vec3& v_t,
                         ContactState& state) const {
     const double N = detail::friction_normal_force(nf, normal);
+    if (p.stick_length > 0)
+      return detail::coulomb_return_map(k, N, p.mu * N / p.stick_length, 0.0, v_t, state,
+                                        [&](const Vec3&) { return p.mu; });
     const double speed2 = v_t.squaredNorm();
     state.elongation.setZero();
     state.sticking = speed2 < p.v_reg * p.v_reg;
     const double den = std::sqrt(speed2 + p.v_reg * p.v_reg);
-    return {den > 0 ? Vec3(-p.mu * N * v_t / den) : Vec3::Zero(), state.sticking};
+    if (!(den > 0)) return {Vec3::Zero(), state.sticking};
+    const Mat3 P = Mat3::Identity() - k.n * k.n.transpose();
+    const Mat3 slope = P / den - v_t * v_t.transpose() / (den * den * den);
+    return {Vec3(-p.mu * N * v_t / den), state.sticking, p.mu * N * slope};
   }
 };
 
@@ -303,25 +411,7 @@ struct StickSlip {
     // dt = 0 (a static solve) leaves the spring where it is; a negative or NaN step is a bug.
     if (!(k.dt >= 0)) throw ModelError("StickSlip: ContactKinematics::dt must be non-negative (got " + detail::fmt(k.dt) + ")");
     const double N = detail::friction_normal_force(nf, normal);
-    Vec3 e = state.elongation;
-    const double len = e.norm();
-    if (len > 0) {
-      e -= e.dot(k.n) * k.n;
-      const double in_plane = e.norm();
-      e = in_plane > 1e-12 * len ? Vec3(e * (len / in_plane)) : Vec3::Zero();
-    }
-    const Vec3 e_trial = e + v_t * k.dt;
-    const Vec3 f_trial = -p.k_t * e_trial - p.c_t * v_t;
-    const double limit = p.mu * N, f_norm = f_trial.norm();
-    if (f_norm <= limit) {
-      state.elongation = e_trial;
-      state.sticking = true;
-      return {f_trial, true};
-    }
-    const Vec3 f = f_trial * (limit / f_norm);
-    state.elongation = -f / p.k_t;  // the dashpot's share is not stored: the spring alone holds the cone
-    state.sticking = false;
-    return {f, false};
+    return detail::coulomb_return_map(k, N, p.k_t, p.c_t, v_t, state, [&](const Vec3&) { return p.mu; });
   }
 };
 
@@ -420,6 +510,10 @@ class ContactLaw {
     if (clamp_tensile) nf.total = std::max(0.0, nf.total);
     const TangentialForce ft = friction_.force(k, p, nf, v_t, state);
     state.normal = k.n;
+    const bool pushing = !clamp_tensile || nf.penalty + nf.damping > 0;
+    const double kn = pushing ? normal_slope(k, p, nf.g, v_n) : 0.0, cn = pushing ? damping_slope(k, p, nf.g, v_n) : 0.0;
+    out.K = kn * k.n * k.n.transpose();
+    out.C = cn * k.n * k.n.transpose() + ft.C;
     out.on_a = nf.total * k.n + ft.on_a;
     out.normal = nf.total;
     out.tangential = ft.on_a.norm();
@@ -428,6 +522,20 @@ class ContactLaw {
   }
 
  private:
+  // The parts' slopes where they give them (a part without one enters the step explicitly).
+  double normal_slope(const ContactKinematics& k, const ContactParams& p, double g, double v_n) const {
+    double s = 0;
+    if constexpr (requires { normal_.stiffness(k, p, g, v_n); }) s += normal_.stiffness(k, p, g, v_n);
+    if constexpr (requires { damping_.stiffness(k, p, g, v_n); }) s += damping_.stiffness(k, p, g, v_n);
+    return s;
+  }
+  double damping_slope(const ContactKinematics& k, const ContactParams& p, double g, double v_n) const {
+    double s = 0;
+    if constexpr (requires { normal_.damping(k, p, g, v_n); }) s += normal_.damping(k, p, g, v_n);
+    if constexpr (requires { damping_.damping(k, p, g, v_n); }) s += damping_.damping(k, p, g, v_n);
+    return s;
+  }
+
   [[no_unique_address]] Normal normal_{};
   [[no_unique_address]] Damping damping_{};
   [[no_unique_address]] Friction friction_{};

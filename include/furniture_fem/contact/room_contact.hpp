@@ -78,6 +78,10 @@ class RoomContact {
   // at most the margin, so no contact is missed), checked at every evaluation in O(nodes).
   double margin = 0.01;  // m
   bool item_contact = true;
+  // Floor and wall contacts inside the implicit step (their tangents in each body's solve, the forces
+  // re-evaluated at the end of a carried-over step). false: every contact force is a load evaluated
+  // at the step's predictor, as the paper's code does (docs/contact/implicit_contact.md).
+  bool implicit = true;
 
   RoomContact() = default;
   RoomContact(const Model& model, std::vector<BodyContact> bodies, std::vector<RigidPlane> planes, Law law = {})
@@ -102,6 +106,9 @@ class RoomContact {
       for (int n : b.caster_nodes) caster_.at(n) = 1;
     node_state_.assign(static_cast<size_t>(model.num_nodes()) * planes_.size(), ContactState{});
     node_trial_ = node_state_;
+    // Item-item pairs keep a history when the law has one, or when any friction sticks by return mapping.
+    pair_history_ = law_has_history;
+    for (const auto& b : bodies_) pair_history_ = pair_history_ || b.item.stick_length > 0;
   }
   void add_obstacle(MeshObstacle obstacle) { obstacles_.push_back(std::move(obstacle)); }
 
@@ -123,7 +130,51 @@ class RoomContact {
     pair_forces_.clear();
     pair_trial_.clear();
     active_ = 0;
-    // Nodes against planes (floor, walls).
+    plane_contacts(view, f);
+    timings_.planes += seconds_since(t_planes);
+    if (item_contact && model.num_bodies() > 1) element_contacts(view, f);
+    if (!obstacles_.empty()) {
+      const auto t_obstacles = clock::now();
+      obstacle_contacts(view, f);
+      timings_.obstacles += seconds_since(t_obstacles);
+    }
+  }
+
+  // The linearisations of the floor and wall forces of the last add_forces (none unless implicit).
+  const std::vector<NodalContactTangent>& nodal_tangents() const { return tangents_; }
+
+  // Floor and wall forces again at the end state of a carried-over step: their forces of the last
+  // evaluation are taken out of f and the new ones put in; the history to commit is the new one.
+  void end_of_step(const ContactView& view, Eigen::VectorXd& f) {
+    if (!implicit) return;
+    for (const auto& [n, force] : plane_applied_) f.template segment<3>(6 * n) -= force;
+    std::erase_if(pair_forces_, [](const PairForce& pf) { return pf.body_b == floor_id || pf.body_b == wall_id; });
+    active_ -= static_cast<int>(plane_applied_.size());
+    plane_contacts(view, f);
+  }
+
+  void commit() {
+    ++steps_;
+    // No copy back into node_trial_: add_forces overwrites every entry of it (reset out of contact,
+    // the committed state in contact) before the law reads it.
+    node_state_.swap(node_trial_);
+    pair_state_.swap(pair_trial_);  // pairs out of contact forget their history
+    pair_trial_.clear();
+  }
+
+  const std::vector<PairForce>& pair_forces() const { return pair_forces_; }
+  int active_contacts() const { return active_; }
+  long broad_phase_runs() const { return broad_runs_; }
+  std::size_t candidate_pairs() const { return candidates_.size(); }
+  const Law& law() const { return law_; }
+  Law& law() { return law_; }
+
+ private:
+  // Nodes against planes (floor, walls): forces into f, and (implicit) their tangents.
+  void plane_contacts(const ContactView& view, Eigen::VectorXd& f) {
+    const Model& model = view.model;
+    tangents_.clear();
+    plane_applied_.clear();
     for (int n = 0; n < model.num_nodes(); ++n) {
       const Vec3& x = view.x[n];
       const int body = model.node(n).body;
@@ -154,34 +205,18 @@ class RoomContact {
         f.template segment<3>(6 * n) += cf.on_a;
         add_pair_force(body, pl.is_wall ? wall_id : floor_id, cf.on_a);
         ++active_;
+        if (!implicit) continue;
+        plane_applied_.emplace_back(n, cf.on_a);
+        if (!tangents_.empty() && tangents_.back().node == n) {
+          tangents_.back().K += cf.K;
+          tangents_.back().C += cf.C;
+        } else {
+          tangents_.push_back({n, cf.K, cf.C, x, k.v});
+        }
       }
     }
-    timings_.planes += seconds_since(t_planes);
-    if (item_contact && model.num_bodies() > 1) element_contacts(view, f);
-    if (!obstacles_.empty()) {
-      const auto t_obstacles = clock::now();
-      obstacle_contacts(view, f);
-      timings_.obstacles += seconds_since(t_obstacles);
-    }
   }
 
-  void commit() {
-    ++steps_;
-    // No copy back into node_trial_: add_forces overwrites every entry of it (reset out of contact,
-    // the committed state in contact) before the law reads it.
-    node_state_.swap(node_trial_);
-    pair_state_.swap(pair_trial_);  // pairs out of contact forget their history
-    pair_trial_.clear();
-  }
-
-  const std::vector<PairForce>& pair_forces() const { return pair_forces_; }
-  int active_contacts() const { return active_; }
-  long broad_phase_runs() const { return broad_runs_; }
-  std::size_t candidate_pairs() const { return candidates_.size(); }
-  const Law& law() const { return law_; }
-  Law& law() { return law_; }
-
- private:
   Vec3 long_axis(int body, const ContactView& view) const {
     const auto& b = bodies_[body];
     if (b.long_axis_node_a < 0 || b.long_axis_node_b < 0) return Vec3::Zero();
@@ -245,13 +280,12 @@ class RoomContact {
       const ContactParams prm = mean_params(bodies_[A.body].item, bodies_[B.body].item);
       // Only laws with a history (a tangential spring) keep per-pair state across steps.
       ContactState st;
-      if constexpr (law_has_history) {
+      if (pair_history_) {
         const auto it = pair_state_.find(key(ea, eb));
         if (it != pair_state_.end()) st = it->second;
       }
       const auto nf = evaluate_segment_pair(law_, sp, prm, st);
-      if constexpr (law_has_history)
-        if (nf.in_contact) pair_trial_[key(ea, eb)] = st;
+      if (pair_history_ && nf.in_contact) pair_trial_[key(ea, eb)] = st;
       if (!nf.in_contact) continue;
       f.template segment<3>(6 * A.n1) += nf.on_a0;
       f.template segment<3>(6 * A.n2) += nf.on_a1;
@@ -317,6 +351,9 @@ class RoomContact {
   BroadPhase broad_phase_;
   std::vector<std::pair<int, int>> candidates_;
   std::vector<PairForce> pair_forces_;
+  std::vector<NodalContactTangent> tangents_;
+  std::vector<std::pair<int, Vec3>> plane_applied_;  // the floor and wall forces of the last evaluation
+  bool pair_history_ = false;
   std::vector<Vec3> x_broad_;  // node positions at the last broad phase
   Timings timings_;
   long steps_ = 0, broad_runs_ = 0;

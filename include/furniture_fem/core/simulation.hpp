@@ -68,6 +68,25 @@ struct NoContact {
 template <class C>
 concept ContactPolicy = requires(C c, const ContactView& view, Eigen::VectorXd& f) { c.add_forces(view, f); };
 
+// The linearisation of the contact force on one node's translations, about the state (x, v) it was
+// evaluated at: f(x + dx, v + dv) ~ f - K dx - C dv. A contact policy that offers these
+// (nodal_tangents()) has them inside the implicit step: each body's solve adds them to its
+// effective matrix as a low-rank update of its factorisation (docs/contact/implicit_contact.md).
+struct NodalContactTangent {
+  int node = -1;
+  Mat3 K = Mat3::Zero(), C = Mat3::Zero();
+  Vec3 x = Vec3::Zero(), v = Vec3::Zero();
+};
+
+// A contact policy with its forces inside the implicit step: the tangents of its last add_forces, and
+// end_of_step(view, f), which re-evaluates at the end of a carried-over step the forces it linearised
+// (updating f), as the internal forces are.
+template <class C>
+concept ImplicitContactPolicy = ContactPolicy<C> && requires(C c, const ContactView& view, Eigen::VectorXd& f) {
+  { c.nodal_tangents() } -> std::convertible_to<const std::vector<NodalContactTangent>&>;
+  c.end_of_step(view, f);
+};
+
 // Where the time of the steps went (seconds, accumulated since the start). Wall clock: `contact`
 // (every node and element pair, the whole scene at once), `bodies` (the sweep over the bodies that
 // does everything else a body needs: residual, solve, updates, element forces, energy, ASI shifts)
@@ -232,7 +251,10 @@ class Simulation {
     body_sweep([&](int b) { predict_body(b, loads); });
     // The predictor's Newmark velocity, (1 - gamma / beta) v_n, has the wrong sign, and friction or the
     // paper's damping evaluated there would pump energy: contact sees v_n + dt a_n (v_contact_) instead.
-    timed(timings_.contact, [&] { contact_forces(t1, v_contact_, fc1_); });
+    timed(timings_.contact, [&] {
+      contact_forces(t1, v_contact_, fc1_);
+      linearised_contact_at_current_state();
+    });
     if (opt_.check_finite && !(fc1_.allFinite() && fext1_.allFinite())) {
       residual();  // for the diagnosis
       throw SimulationError(t_, "the residual is not finite (NaN or infinity) at the start of the step: " +
@@ -240,6 +262,7 @@ class Simulation {
     }
     StepKernel kernel{*this, t1};
     const StepInfo info = step_with(integrator_.mode, kernel);
+    if (integrator_.mode == EquilibriumMode::carry_over) timed(timings_.contact, [&] { contact_at_end_of_step(); });
     if constexpr (requires { contact_.commit(); }) contact_.commit();
     t_ = t1;
     ++steps_;
@@ -472,7 +495,7 @@ class Simulation {
     v_.setZero(6 * nn);
     a_.setZero(6 * nn);
     for (auto* v : {&vn_, &an_, &v_contact_, &Du_, &fint_, &fext0_, &fext1_, &fc0_, &fc1_, &fnet0_, &mass_, &nodal_load_,
-                    &fgrav_, &r_})
+                    &fgrav_, &r_, &contact_delta_})
       v->setZero(6 * nn);
     props_.resize(ne);
     E0_.resize(ne);
@@ -582,6 +605,49 @@ class Simulation {
     if constexpr (!std::is_same_v<Contact, NoContact>) {
       const ContactView view{model_, x_, v, t, opt_.dt};
       contact_.add_forces(view, f);
+    }
+    gather_contact_tangents();
+  }
+
+  // Each body's share of the contact tangents, as the effective-matrix terms
+  // (1 - af) (K + gamma / (beta dt) C) of its nodes (statics has none: it evaluates no contact).
+  void gather_contact_tangents() {
+    if constexpr (ImplicitContactPolicy<Contact>) {
+      for (auto& bs : systems_) bs.contact.clear();
+      if (static_) return;
+      const double dt = opt_.dt, kf = 1 - coef_.alpha_f, cf = coef_.gamma / (coef_.beta * dt);
+      for (const auto& t : contact_.nodal_tangents()) {
+        auto& bs = systems_[model_.node(t.node).body];
+        const Mat3 k = kf * (t.K + cf * t.C);
+        const int local = local_index_[t.node];
+        if (!bs.contact.empty() && bs.contact.back().local == local) bs.contact.back().K += k;
+        else bs.contact.push_back({local, k});
+      }
+    }
+  }
+
+  // The predictor's contact forces are evaluated at the velocity v_contact_ (a better guess of the
+  // step's end than the predictor's); their linearisation carries them to the current state.
+  void linearised_contact_at_current_state() {
+    if constexpr (ImplicitContactPolicy<Contact>) {
+      for (const auto& t : contact_.nodal_tangents()) {
+        const int i = 6 * t.node;
+        fc1_.segment<3>(i) -= t.K * (x_[t.node] - t.x) + t.C * (v_.segment<3>(i) - t.v);
+      }
+    }
+  }
+
+  // A carried-over step applied the linearised contact forces; the forces the next step starts from
+  // are those of the end state (as for the internal forces), and the committed contact history too.
+  void contact_at_end_of_step() {
+    if constexpr (ImplicitContactPolicy<Contact>) {
+      contact_delta_ = fc1_;
+      const ContactView view{model_, x_, v_, t_state_, opt_.dt};
+      contact_.end_of_step(view, fc1_);
+      contact_delta_ = fc1_ - contact_delta_;
+      fc0_ += contact_delta_;
+      fnet0_ += contact_delta_;
+      ledger_.contact_work += 0.5 * Du_.dot(contact_delta_);
     }
   }
 
@@ -855,6 +921,8 @@ class Simulation {
         bs.needs_refresh = false;
         bs.assembled = false;
         bs.steps_since_refresh = 0;
+        bs.contact_column.assign(bs.nodes.size(), -1);  // the columns belong to the old factor
+        bs.contact_columns_used = 0;
         ++s.refreshed;
       }
       // Take the body's rigid rotation since the factorisation out of the right-hand side (P^T r),
@@ -866,11 +934,65 @@ class Simulation {
         bs.r.segment<3>(6 * k + 3) = P.transpose() * sim.r_.segment<3>(6 * g + 3);
       }
       if (!sim.solvers_[b]->solve(bs.r, bs.dx)) s.solve_failed = true;
+      if (!bs.contact.empty() && !sim.static_ && !s.solve_failed && !contact_update(sim, b, P)) s.solve_failed = true;
       for (size_t k = 0; k < bs.nodes.size(); ++k) {
         const int g = bs.nodes[k];
         sim.Du_.segment<3>(6 * g) += P * bs.dx.segment<3>(6 * k);
         sim.Du_.segment<3>(6 * g + 3) += P * bs.dx.segment<3>(6 * k + 3);
       }
+    }
+
+    // The contact terms on the solution of the factorised system K dx = r, by the Woodbury identity:
+    // (K + U C U^T) x = r gives x = dx - Z y with Z = K^-1 U, (I + C U^T Z) y = C U^T dx, U selecting
+    // the contact nodes' translations (in the factor's frame: C rotated by P). Z's columns are kept
+    // until the next factorisation, so a step costs 3 solves per node that starts touching and a dense
+    // solve of three rows per contact node: the factor reuse stays. False when a solve fails.
+    static bool contact_update(Simulation& sim, int b, const Mat3& P) {
+      auto& bs = sim.systems_[b];
+      if (bs.contact_column.size() != bs.nodes.size()) bs.contact_column.assign(bs.nodes.size(), -1);
+      for (const auto& c : bs.contact)
+        if (bs.contact_column[c.local] < 0 && !add_contact_columns(sim, b, c.local)) return false;
+      const int m = 3 * static_cast<int>(bs.contact.size());
+      Eigen::MatrixXd S(m, m), Cm = Eigen::MatrixXd::Zero(m, m);
+      Eigen::VectorXd rhs(m);
+      for (int a = 0; a < m / 3; ++a) {
+        const auto& ca = bs.contact[a];
+        Mat3 k = P.transpose() * ca.K * P;
+        for (int i = 0; i < 3; ++i)
+          if (bs.fixed[6 * ca.local + i]) k.row(i).setZero(), k.col(i).setZero();
+        Cm.template block<3, 3>(3 * a, 3 * a) = k;
+        for (int c = 0; c < m / 3; ++c)
+          S.template block<3, 3>(3 * a, 3 * c) =
+              bs.contact_columns.block(6 * ca.local, bs.contact_column[bs.contact[c].local], 3, 3);
+        rhs.template segment<3>(3 * a) = k * bs.dx.template segment<3>(6 * ca.local);
+      }
+      const Eigen::VectorXd y = (Eigen::MatrixXd::Identity(m, m) + Cm * S).partialPivLu().solve(rhs);
+      if (!y.allFinite()) return false;
+      for (int c = 0; c < m / 3; ++c)
+        bs.dx -= bs.contact_columns.middleCols(bs.contact_column[bs.contact[c].local], 3) * y.template segment<3>(3 * c);
+      return true;
+    }
+    // K^-1 e for the three translations of one local node (zero for a fixed DOF).
+    static bool add_contact_columns(Simulation& sim, int b, int local) {
+      auto& bs = sim.systems_[b];
+      const int n = bs.ndof(), first = bs.contact_columns_used;
+      if (bs.contact_columns.rows() != n || bs.contact_columns.cols() < first + 3)
+        bs.contact_columns.conservativeResize(n, std::max<Eigen::Index>(first + 3, 2 * bs.contact_columns.cols()));
+      Eigen::VectorXd e = Eigen::VectorXd::Zero(n), z(n);
+      for (int i = 0; i < 3; ++i) {
+        const int dof = 6 * local + i;
+        if (bs.fixed[dof]) {
+          bs.contact_columns.col(first + i).setZero();
+          continue;
+        }
+        e[dof] = 1;
+        if (!sim.solvers_[b]->solve(e, z)) return false;
+        e[dof] = 0;
+        bs.contact_columns.col(first + i) = z;
+      }
+      bs.contact_column[local] = first;
+      bs.contact_columns_used += 3;
+      return true;
     }
 
     // The linear solve moves the nodes of a turning body along tangents: each member stretches by
@@ -950,6 +1072,18 @@ class Simulation {
       bs.assembled = false;
     }
 
+    // The contact terms reduced like the mass: with T = [I, -S] (dx_n = dc - S dtheta), T^T K T.
+    static void add_contact_terms(const Simulation& sim, const detail::BodySystem& bs, const Vec3& c,
+                                  Eigen::Matrix<double, 6, 6>& A) {
+      for (const auto& ct : bs.contact) {
+        const Mat3 S = detail::skew(sim.x_[bs.nodes[ct.local]] - c);
+        A.template block<3, 3>(0, 0) += ct.K;
+        A.template block<3, 3>(0, 3) -= ct.K * S;
+        A.template block<3, 3>(3, 0) += S * ct.K;
+        A.template block<3, 3>(3, 3) -= S * ct.K * S;
+      }
+    }
+
     // Nodal increments dx_n = dc + dtheta x r_n, rotations dtheta; the nodal residual and effective
     // mass reduced to 6 x 6 (T^T r, T^T M* T) and solved.
     static void newton_step(Simulation& sim, detail::BodySystem& bs) {
@@ -971,6 +1105,7 @@ class Simulation {
         R6.template head<3>() += rf;
         R6.template tail<3>() += S * rf + rm;
       }
+      if (!sim.static_) add_contact_terms(sim, bs, c, A);
       const Vec6 dq = A.ldlt().solve(R6);
       bs.rigid_dc += dq.template head<3>();
       bs.rigid_Q = detail::rotation_exp(dq.template tail<3>()) * bs.rigid_Q;
@@ -1070,6 +1205,7 @@ class Simulation {
   std::vector<Vec3> x_, u_, u0_;  // positions, displacements (kept apart for precision)
   std::vector<Mat3> R_, R0_;
   Eigen::VectorXd v_, a_, vn_, an_, v_contact_, Du_, r_, fint_, fext0_, fext1_, fc0_, fc1_, fnet0_, mass_, nodal_load_, fgrav_;
+  Eigen::VectorXd contact_delta_;
   std::vector<ElementProps> props_;
   std::vector<Mat3> E0_, frames_;
   std::vector<Vec12> d_, fl_;

@@ -81,6 +81,17 @@ struct BodySystem {
   bool rigid = false;                // solved as a rigid body (6 DOF)
   Vec3 rigid_c0 = Vec3::Zero(), rigid_dc = Vec3::Zero();  // centre at the step's start, its increment
   Mat3 rigid_Q = Mat3::Identity();   // rotation since the step's start
+  // Contact inside the implicit step: the effective-matrix terms of the body's contact nodes (local
+  // node, 3 x 3 on its translations), and the columns K^-1 e of the factorised matrix for those nodes,
+  // kept until the next factorisation (a node's three columns start at contact_column[local]).
+  struct ContactTerm {
+    int local;
+    Mat3 K;
+  };
+  std::vector<ContactTerm> contact;
+  Eigen::MatrixXd contact_columns;
+  std::vector<int> contact_column;  // per local node; -1: not computed
+  int contact_columns_used = 0;
   int ndof() const { return static_cast<int>(nodes.size()) * 6; }
 };
 
