@@ -158,7 +158,7 @@ TEST_CASE("a scene file round-trips exactly", "[scene][json]") {
     j["items"].push_back({{"kind", "table"}, {"x", -1.0}, {"y", -1.5}, {"fidelity", "auto"}});
     j["contact"] = {{"law", "stick_slip"},
                     {"velocity_regularisation", 0.002},
-                    {"floor", {{"mu_long", 0.3}, {"mu_short", 0.2}, {"mu_static", 0.35}, {"stick_velocity", 0.01}}},
+                    {"floor", {{"mu_long", 0.3}, {"stiffness", 2e5}, {"damping", 40}}},
                     {"item", {{"alpha_kgf", 20}, {"q", 1.5}}}};
     j["integrator"] = {{"scheme", "generalized_alpha"}, {"rho_inf", 0.8}, {"iterate_to_equilibrium", true}};
     j["solver"] = "direct";
@@ -251,8 +251,26 @@ TEST_CASE("broken scene files name the key path and the value", "[scene][errors]
     CHECK_THAT(parse_error(j), Contains("contact.law") && Contains("\"coulomb\""));
   }
   SECTION("a parameter the law does not use") {
-    j["contact"] = {{"law", "paper"}, {"wall", {{"restitution", 0.5}}}};
-    CHECK_THAT(parse_error(j), Contains("contact.wall.restitution") && Contains("paper"));
+    j["contact"] = {{"law", "paper"}, {"wall", {{"stiffness", 5e5}}}};
+    CHECK_THAT(parse_error(j), Contains("contact.wall.stiffness") && Contains("paper"));
+    j["contact"] = {{"law", "spring_dashpot"}, {"floor", {{"mu_short", 0.2}}}};
+    CHECK_THAT(parse_error(j), Contains("contact.floor.mu_short") && Contains("spring_dashpot"));
+    j["contact"] = {{"law", "stiff"}, {"floor", {{"stiffness", 5e5}}}};
+    CHECK_THAT(parse_error(j), Contains("contact.floor.stiffness") && Contains("stiff"));
+    j["contact"] = {{"law", "stick_slip"}, {"stick_length", 1e-4}};
+    CHECK_THAT(parse_error(j), Contains("contact.stick_length") && Contains("stick_slip"));
+  }
+  SECTION("keys no law reads are unknown") {  // they were once read and ignored
+    for (const char* key : {"restitution", "mu_static", "stick_velocity"}) {
+      j["contact"] = {{"law", "hunt_crossley"}, {"floor", {{key, 0.5}}}};
+      CHECK_THAT(parse_error(j), Contains(std::string("contact.floor.") + key));
+    }
+    j["contact"] = {{"law", "hunt_crossley"}, {"item", {{"q", 1.5}}}};
+    CHECK_THAT(parse_error(j), Contains("contact.item.q") && Contains("hunt_crossley"));
+  }
+  SECTION("stick_length out of range") {
+    j["contact"] = {{"law", "paper"}, {"stick_length", -1e-5}};
+    CHECK_THAT(parse_error(j), Contains("contact.stick_length") && Contains("[0, 0.01]"));
   }
   SECTION("a parameter the item kind does not take") {
     j["items"][1]["params"] = {{"width", 1.4}};

@@ -336,6 +336,9 @@ class RoomContact {
     p.k_lin = 0.5 * (a.k_lin + b.k_lin);
     p.c_lin = 0.5 * (a.c_lin + b.c_lin);
     p.k_t = 0.5 * (a.k_t + b.k_t);
+    p.c_t = 0.5 * (a.c_t + b.c_t);
+    p.k_hc = 0.5 * (a.k_hc + b.k_hc);
+    p.hc_damping = 0.5 * (a.hc_damping + b.hc_damping);
     return p;
   }
   static long long key(int a, int b) { return (static_cast<long long>(a) << 32) | static_cast<unsigned>(b); }

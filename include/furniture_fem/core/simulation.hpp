@@ -630,24 +630,36 @@ class Simulation {
   // step's end than the predictor's); their linearisation carries them to the current state.
   void linearised_contact_at_current_state() {
     if constexpr (ImplicitContactPolicy<Contact>) {
-      for (const auto& t : contact_.nodal_tangents()) {
+      const auto& tangents = contact_.nodal_tangents();
+      predictor_shift_.resize(tangents.size());
+      for (size_t k = 0; k < tangents.size(); ++k) {
+        const auto& t = tangents[k];
         const int i = 6 * t.node;
-        fc1_.segment<3>(i) -= t.K * (x_[t.node] - t.x) + t.C * (v_.segment<3>(i) - t.v);
+        predictor_shift_[k] = -(t.K * (x_[t.node] - t.x) + t.C * (v_.segment<3>(i) - t.v));
+        fc1_.segment<3>(i) += predictor_shift_[k];
       }
     }
   }
 
-  // A carried-over step applied the linearised contact forces; the forces the next step starts from
-  // are those of the end state (as for the internal forces), and the committed contact history too.
+  // A carried-over step solved its equilibrium with the linearised contact forces: those at its end
+  // state are the forces its work and the next step's start take (fc0_, fnet0_). The contact policy
+  // then evaluates its forces at the end state once more, to commit the history of that state (a stick
+  // spring's elongation, a slip direction); what it adds to f is not used.
   void contact_at_end_of_step() {
     if constexpr (ImplicitContactPolicy<Contact>) {
-      contact_delta_ = fc1_;
+      const auto& tangents = contact_.nodal_tangents();
+      for (size_t k = 0; k < tangents.size(); ++k) {
+        const auto& t = tangents[k];
+        const int i = 6 * t.node;
+        const Vec3 shift = -(t.K * (x_[t.node] - t.x) + t.C * (v_.segment<3>(i) - t.v));
+        const Vec3 delta = shift - predictor_shift_[k];
+        fc0_.segment<3>(i) += delta;
+        fnet0_.segment<3>(i) += delta;
+        ledger_.contact_work += 0.5 * Du_.segment<3>(i).dot(delta);
+      }
+      contact_delta_.setZero();
       const ContactView view{model_, x_, v_, t_state_, opt_.dt};
-      contact_.end_of_step(view, fc1_);
-      contact_delta_ = fc1_ - contact_delta_;
-      fc0_ += contact_delta_;
-      fnet0_ += contact_delta_;
-      ledger_.contact_work += 0.5 * Du_.dot(contact_delta_);
+      contact_.end_of_step(view, contact_delta_);
     }
   }
 
@@ -1206,6 +1218,7 @@ class Simulation {
   std::vector<Mat3> R_, R0_;
   Eigen::VectorXd v_, a_, vn_, an_, v_contact_, Du_, r_, fint_, fext0_, fext1_, fc0_, fc1_, fnet0_, mass_, nodal_load_, fgrav_;
   Eigen::VectorXd contact_delta_;
+  std::vector<Vec3> predictor_shift_;  // the linearised contact forces' shift from v_contact_ to v_ at the predictor
   std::vector<ElementProps> props_;
   std::vector<Mat3> E0_, frames_;
   std::vector<Vec12> d_, fl_;

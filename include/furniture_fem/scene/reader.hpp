@@ -225,10 +225,14 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
 
   if (r.has("contact")) {
     const ObjectReader c = r.object("contact");
-    c.allow_only({"law", "velocity_regularisation", "floor", "wall", "item"});
+    c.allow_only({"law", "velocity_regularisation", "stick_length", "floor", "wall", "item"});
     s.contact.law = c.enumeration("law", detail::law_names, s.contact.law, "contact law");
     s.contact.velocity_regularisation = c.number("velocity_regularisation", s.contact.velocity_regularisation);
     c.positive("velocity_regularisation");
+    if (c.has("stick_length") && s.contact.law == ContactLawKind::stick_slip)
+      c.fail(c.path("stick_length"), "not used by the contact law \"stick_slip\" (its tangential spring is k_t)");
+    s.contact.stick_length = c.number("stick_length", s.contact.stick_length);
+    detail::read_range(c, "stick_length", 0.0, 0.01, false);
     if (c.has("floor")) s.contact.floor = detail::parse_contact_overrides(c.object("floor"), s.contact.law, true);
     if (c.has("wall")) s.contact.wall = detail::parse_contact_overrides(c.object("wall"), s.contact.law, false);
     if (c.has("item")) s.contact.item = detail::parse_contact_overrides(c.object("item"), s.contact.law, false);

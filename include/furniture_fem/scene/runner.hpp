@@ -181,6 +181,8 @@ inline RunSummary run_scene(const SceneSpec& spec, const RunOptions& opt = {}, c
       return detail::run_composed<HuntCrossleyLaw, DirectLdltSolver>(spec, opt, extra, t_start);
     case ContactLawKind::stick_slip:
       return detail::run_composed<StickSlipLaw, DirectLdltSolver>(spec, opt, extra, t_start);
+    case ContactLawKind::stiff:  // the spring-dashpot law with its parameters from the item (scene_body_contacts)
+      return detail::run_composed<SpringDashpotLaw, DirectLdltSolver>(spec, opt, extra, t_start);
   }
   throw InputError(spec.source, 0, "contact.law", "unknown contact law");
 }

@@ -86,6 +86,21 @@ inline TableMotion scene_table_motion(const SceneSpec& s) {
   return TableMotion::three_d(std::move(x), std::move(y), std::move(z));
 }
 
+// The `stiff` law's parameters for one body: a linear spring per resting node (those at the body's
+// lowest level) stiff enough that the item's weight, shared by them, presses them 25 um in (0.1 mm
+// when one node in four carries it all), half-critical damping of the item's mass on those springs,
+// and Coulomb friction on the total normal force that sticks (docs/contact/contact.md, "stiff").
+inline void set_stiff_law(const Model& model, int body, ContactParams& p) {
+  constexpr double resting_penetration = 2.5e-5, damping_ratio = 0.5;
+  double z_min = std::numeric_limits<double>::infinity();
+  for (int n : model.body(body).nodes) z_min = std::min(z_min, model.node(n).X.z());
+  int resting = 0;
+  for (int n : model.body(body).nodes) resting += model.node(n).X.z() <= z_min + 1e-3;
+  const double mass = model.body_mass(body), per_node = mass / std::max(resting, 1);
+  p.k_lin = per_node * 9.80665 / resting_penetration;
+  p.c_lin = 2 * damping_ratio * std::sqrt(p.k_lin * per_node);
+}
+
 // Contact parameters of each body from its item's (Table 4 or rule) values and the scene's overrides.
 inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Model& model,
                                                     const std::vector<ItemInfo>& items) {
@@ -95,8 +110,13 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
     if (o.dc_kgf) p.Dc = *o.dc_kgf * newtons_per_kgf;
     if (o.q) p.q = *o.q;
     if (o.mu) p.mu = p.mu_long = p.mu_short = *o.mu;
-    if (o.mu_long) p.mu_long = *o.mu_long;
+    if (o.mu_long) p.mu = p.mu_long = *o.mu_long;
     if (o.mu_short) p.mu_short = *o.mu_short;
+    if (o.stiffness) {  // the linear spring, the stick-slip spring, Hunt-Crossley's at the same onset
+      p.k_lin = p.k_t = *o.stiffness;
+      p.k_hc = *o.stiffness / std::sqrt(0.025);
+    }
+    if (o.damping) p.c_lin = p.c_t = *o.damping;
   };
   for (const auto& it : items) {
     BodyContact bc;
@@ -106,6 +126,7 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
     base.Dc = c.Dc;
     base.q = c.q;
     base.v_reg = s.contact.velocity_regularisation;
+    base.stick_length = s.contact.law == ContactLawKind::stick_slip ? 0.0 : s.contact.stick_length;
     // Linear and Hunt-Crossley springs get the paper penalty's stiffness at onset: alpha / L per
     // contact with L = 25 mm (half the 50 mm member width); the tangential spring of the stick-slip
     // law is as stiff; critical-ish damping for a node of ~0.1 kg.
@@ -114,6 +135,7 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
     base.k_hc = base.k_lin / std::sqrt(0.025);
     base.hc_damping = 0.5;
     base.k_t = base.k_lin;
+    if (s.contact.law == ContactLawKind::stiff) set_stiff_law(model, it.body, base);
     bc.floor = base;
     bc.floor.mu = c.mu_floor_long;
     bc.floor.mu_long = c.mu_floor_long;
@@ -125,8 +147,6 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
     apply(bc.floor, s.contact.floor);
     apply(bc.wall, s.contact.wall);
     apply(bc.item, s.contact.item);
-    if (s.contact.floor.stiffness) bc.floor.k_lin = bc.floor.k_t = *s.contact.floor.stiffness;
-    if (s.contact.floor.damping) bc.floor.c_lin = *s.contact.floor.damping;
     bc.long_axis_node_a = it.long_axis_nodes[0];
     bc.long_axis_node_b = it.long_axis_nodes[1];
     bc.caster_nodes = it.caster_nodes;

@@ -93,19 +93,21 @@ struct GroundMotionSpec {
   std::optional<double> window_end;        // none: the record's end
 };
 
-enum class ContactLawKind { paper, paper_anisotropic, spring_dashpot, hunt_crossley, stick_slip };
+enum class ContactLawKind { paper, paper_anisotropic, spring_dashpot, hunt_crossley, stick_slip, stiff };
 
 // Overrides of the contact parameters for one kind of pair (floor, wall or item-item). Unset values
 // come from each item's ItemContact (Table 4 or the 0.8 rule).
 struct ContactOverrides {
   std::optional<double> alpha_kgf, dc_kgf, q, mu, mu_long, mu_short;  // paper laws
-  std::optional<double> stiffness, damping, restitution;             // N/m, N s/m, -
-  std::optional<double> mu_static, stick_velocity;                   // stick-slip: -, m/s
+  std::optional<double> stiffness, damping;                          // N/m, N s/m
 };
 
 struct ContactSpec {
   ContactLawKind law = ContactLawKind::paper;
   double velocity_regularisation = 1e-3;  // m/s: v/|v| is smoothed below this speed
+  // m: elastic range of the stick spring of Coulomb friction (holds still below mu N); 0: friction
+  // regularised by velocity_regularisation instead (it creeps). Not read by stick_slip (its own spring).
+  double stick_length = 1e-5;
   ContactOverrides floor, wall, item;
 };
 

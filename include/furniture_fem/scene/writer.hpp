@@ -84,6 +84,7 @@ inline nlohmann::json to_json(const SceneSpec& s) {
   j["ground_motion"] = gm;
   json contact = {{"law", enum_name(detail::law_names, s.contact.law)},
                   {"velocity_regularisation", s.contact.velocity_regularisation}};
+  if (s.contact.law != ContactLawKind::stick_slip) contact["stick_length"] = s.contact.stick_length;
   for (auto [key, o] : {std::pair{"floor", &s.contact.floor}, std::pair{"wall", &s.contact.wall},
                         std::pair{"item", &s.contact.item}}) {
     const json ov = detail::overrides_to_json(*o);

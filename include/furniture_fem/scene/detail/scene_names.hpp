@@ -24,11 +24,12 @@ inline constexpr EnumNames<MotionDimensions, 2> dimension_names{
     {{MotionDimensions::one_d, "1d"}, {MotionDimensions::three_d, "3d"}}};
 inline constexpr EnumNames<AccelerationUnits, 3> unit_names{
     {{AccelerationUnits::g, "g"}, {AccelerationUnits::gal, "gal"}, {AccelerationUnits::m_per_s2, "m/s2"}}};
-inline constexpr EnumNames<ContactLawKind, 5> law_names{{{ContactLawKind::paper, "paper"},
+inline constexpr EnumNames<ContactLawKind, 6> law_names{{{ContactLawKind::paper, "paper"},
                                                          {ContactLawKind::paper_anisotropic, "paper_anisotropic"},
                                                          {ContactLawKind::spring_dashpot, "spring_dashpot"},
                                                          {ContactLawKind::hunt_crossley, "hunt_crossley"},
-                                                         {ContactLawKind::stick_slip, "stick_slip"}}};
+                                                         {ContactLawKind::stick_slip, "stick_slip"},
+                                                         {ContactLawKind::stiff, "stiff"}}};
 inline constexpr EnumNames<IntegratorKind, 3> integrator_names{
     {{IntegratorKind::paper_newmark, "paper_newmark"},
      {IntegratorKind::average_acceleration, "average_acceleration"},
@@ -41,21 +42,20 @@ struct ContactField {
   std::optional<double> ContactOverrides::*field;
   double lo, hi;
   bool lo_exclusive;
-  std::array<bool, 5> used_by;  // paper, paper_anisotropic, spring_dashpot, hunt_crossley, stick_slip
+  std::array<bool, 6> used_by;  // paper, paper_anisotropic, spring_dashpot, hunt_crossley, stick_slip, stiff
   bool floor_only;
 };
-inline constexpr std::array<ContactField, 11> contact_fields{{
-    {"alpha_kgf", &ContactOverrides::alpha_kgf, 0.0, 1e6, true, {true, true, false, false, true}, false},
-    {"dc_kgf", &ContactOverrides::dc_kgf, 0.0, 1e6, false, {true, true, false, false, true}, false},
-    {"q", &ContactOverrides::q, 0.0, 10.0, true, {true, true, false, true, true}, false},
-    {"mu", &ContactOverrides::mu, 0.0, 5.0, false, {true, true, true, true, true}, false},
-    {"mu_long", &ContactOverrides::mu_long, 0.0, 5.0, false, {true, true, true, true, true}, true},
-    {"mu_short", &ContactOverrides::mu_short, 0.0, 5.0, false, {true, true, true, true, true}, true},
-    {"stiffness", &ContactOverrides::stiffness, 0.0, 1e12, true, {false, false, true, true, false}, false},
-    {"damping", &ContactOverrides::damping, 0.0, 1e12, false, {false, false, true, false, false}, false},
-    {"restitution", &ContactOverrides::restitution, 0.0, 1.0, false, {false, false, false, true, false}, false},
-    {"mu_static", &ContactOverrides::mu_static, 0.0, 5.0, false, {false, false, false, false, true}, false},
-    {"stick_velocity", &ContactOverrides::stick_velocity, 0.0, 10.0, true, {false, false, false, false, true}, false},
+// mu_long is read by every law (the isotropic ones take it as their floor mu, the paper's rule);
+// mu_short only by the anisotropic one.
+inline constexpr std::array<ContactField, 8> contact_fields{{
+    {"alpha_kgf", &ContactOverrides::alpha_kgf, 0.0, 1e6, true, {true, true, false, false, true, false}, false},
+    {"dc_kgf", &ContactOverrides::dc_kgf, 0.0, 1e6, false, {true, true, false, false, true, false}, false},
+    {"q", &ContactOverrides::q, 0.0, 10.0, true, {true, true, false, false, true, false}, false},
+    {"mu", &ContactOverrides::mu, 0.0, 5.0, false, {true, true, true, true, true, true}, false},
+    {"mu_long", &ContactOverrides::mu_long, 0.0, 5.0, false, {true, true, true, true, true, true}, true},
+    {"mu_short", &ContactOverrides::mu_short, 0.0, 5.0, false, {false, true, false, false, false, false}, true},
+    {"stiffness", &ContactOverrides::stiffness, 0.0, 1e12, true, {false, false, true, true, true, false}, false},
+    {"damping", &ContactOverrides::damping, 0.0, 1e12, false, {false, false, true, false, true, false}, false},
 }};
 
 inline void read_range(const ObjectReader& r, std::string_view key, double lo, double hi, bool lo_exclusive) {
