@@ -36,6 +36,7 @@ struct BodyContact {
   int long_axis_node_a = -1, long_axis_node_b = -1;  // two nodes along the item's longer edge
   std::vector<int> caster_nodes;                     // nodes with their own (low) floor friction
   double caster_mu = -1;                             // < 0: the body's floor mu
+  bool implicit = true;  // its floor and wall contact inside the implicit step (with RoomContact::implicit)
 };
 
 // A rigid plane: points with (x - point) . normal >= 0 are outside. Bounded by half extents along
@@ -205,7 +206,7 @@ class RoomContact {
         f.template segment<3>(6 * n) += cf.on_a;
         add_pair_force(body, pl.is_wall ? wall_id : floor_id, cf.on_a);
         ++active_;
-        if (!implicit) continue;
+        if (!implicit || !bodies_[body].implicit) continue;
         plane_applied_.emplace_back(n, cf.on_a);
         if (!tangents_.empty() && tangents_.back().node == n) {
           tangents_.back().K += cf.K;

@@ -225,8 +225,9 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
 
   if (r.has("contact")) {
     const ObjectReader c = r.object("contact");
-    c.allow_only({"law", "velocity_regularisation", "stick_length", "floor", "wall", "item"});
+    c.allow_only({"law", "implicit", "velocity_regularisation", "stick_length", "floor", "wall", "item"});
     s.contact.law = c.enumeration("law", detail::law_names, s.contact.law, "contact law");
+    s.contact.implicit = c.enumeration("implicit", detail::implicit_contact_names, s.contact.implicit, "implicit contact");
     s.contact.velocity_regularisation = c.number("velocity_regularisation", s.contact.velocity_regularisation);
     c.positive("velocity_regularisation");
     if (c.has("stick_length") && s.contact.law == ContactLawKind::stick_slip)

@@ -101,6 +101,15 @@ inline void set_stiff_law(const Model& model, int body, ContactParams& p) {
   p.c_lin = 2 * damping_ratio * std::sqrt(p.k_lin * per_node);
 }
 
+// Whether a scene models an item as a rigid body: `rigid`, or `auto` when no sectional force of it is asked for.
+inline bool item_is_rigid(const SceneSpec& s, const ItemInfo& item) {
+  if (item.fidelity == Fidelity::rigid) return true;
+  if (item.fidelity != Fidelity::automatic) return false;
+  for (const auto& r : s.outputs.sectional_forces)
+    if (r.item == item.name) return false;
+  return true;
+}
+
 // Contact parameters of each body from its item's (Table 4 or rule) values and the scene's overrides.
 inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Model& model,
                                                     const std::vector<ItemInfo>& items) {
@@ -126,7 +135,11 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
     base.Dc = c.Dc;
     base.q = c.q;
     base.v_reg = s.contact.velocity_regularisation;
-    base.stick_length = s.contact.law == ContactLawKind::stick_slip ? 0.0 : s.contact.stick_length;
+    // Floor and wall contact inside the implicit step where the scene asks for it; friction sticks only
+    // there (a stick spring applied explicitly would be unstable).
+    bc.implicit = s.contact.implicit == ImplicitContact::all ||
+                  (s.contact.implicit == ImplicitContact::rigid && item_is_rigid(s, it));
+    base.stick_length = s.contact.law == ContactLawKind::stick_slip || !bc.implicit ? 0.0 : s.contact.stick_length;
     // Linear and Hunt-Crossley springs get the paper penalty's stiffness at onset: alpha / L per
     // contact with L = 25 mm (half the 50 mm member width); the tangential spring of the stick-slip
     // law is as stiff; critical-ish damping for a node of ~0.1 kg.
@@ -304,14 +317,7 @@ struct SceneSimulation {
     const TableMotion* m = &motion;
     sim->set_table_acceleration([m](double t) { return m->at(t); });
     for (size_t i = 0; i < items.size(); ++i) {
-      bool rigid = items[i].fidelity == Fidelity::rigid;
-      if (items[i].fidelity == Fidelity::automatic) {
-        rigid = true;
-        const std::string item_name = items[i].name;
-        for (const auto& r : spec.outputs.sectional_forces)
-          if (r.item == item_name) rigid = false;
-      }
-      if (rigid) {
+      if (item_is_rigid(spec, items[i])) {
         sim->set_rigid(items[i].body);
         rigid_bodies.push_back(items[i].body);
       }

@@ -83,6 +83,7 @@ inline nlohmann::json to_json(const SceneSpec& s) {
   }
   j["ground_motion"] = gm;
   json contact = {{"law", enum_name(detail::law_names, s.contact.law)},
+                  {"implicit", enum_name(detail::implicit_contact_names, s.contact.implicit)},
                   {"velocity_regularisation", s.contact.velocity_regularisation}};
   if (s.contact.law != ContactLawKind::stick_slip) contact["stick_length"] = s.contact.stick_length;
   for (auto [key, o] : {std::pair{"floor", &s.contact.floor}, std::pair{"wall", &s.contact.wall},

@@ -71,6 +71,7 @@ struct BodySystem {
   SparseMatrix K;
   std::vector<std::array<int, 144>> element_slots;
   std::vector<int> diag_slot;        // value index of each diagonal entry
+  std::vector<std::array<int, 9>> node_slots;  // value indices of each node's translational 3 x 3 block
   std::vector<char> fixed;           // per local DOF
   Eigen::VectorXd r, dx, work;       // residual, solution, scratch
   Vec3 Xc = Vec3::Zero();            // initial centroid
@@ -82,13 +83,18 @@ struct BodySystem {
   Vec3 rigid_c0 = Vec3::Zero(), rigid_dc = Vec3::Zero();  // centre at the step's start, its increment
   Mat3 rigid_Q = Mat3::Identity();   // rotation since the step's start
   // Contact inside the implicit step: the effective-matrix terms of the body's contact nodes (local
-  // node, 3 x 3 on its translations), and the columns K^-1 e of the factorised matrix for those nodes,
-  // kept until the next factorisation (a node's three columns start at contact_column[local]).
+  // node, 3 x 3 on its translations); the terms put into the factorisation (per local node, in the
+  // factor's frame; the nodes that have one); and the columns K^-1 e of the factorised matrix for the
+  // nodes whose term has changed since, kept until the next factorisation (a node's three columns start
+  // at contact_column[local]).
   struct ContactTerm {
     int local;
     Mat3 K;
   };
   std::vector<ContactTerm> contact;
+  std::vector<Mat3> contact_factored;
+  std::vector<int> factored_nodes;
+  std::vector<char> contact_seen;  // scratch, per local node
   Eigen::MatrixXd contact_columns;
   std::vector<int> contact_column;  // per local node; -1: not computed
   int contact_columns_used = 0;
@@ -119,6 +125,9 @@ inline void build_pattern(BodySystem& bs, const Model& model, const std::vector<
   };
   bs.diag_slot.resize(n);
   for (int i = 0; i < n; ++i) bs.diag_slot[i] = slot(i, i);
+  bs.node_slots.resize(bs.nodes.size());
+  for (size_t k = 0; k < bs.nodes.size(); ++k)
+    for (int i = 0; i < 9; ++i) bs.node_slots[k][i] = slot(6 * int(k) + i / 3, 6 * int(k) + i % 3);
   bs.element_slots.resize(bs.elements.size());
   for (size_t k = 0; k < bs.elements.size(); ++k) {
     const auto& el = model.elements()[bs.elements[k]];

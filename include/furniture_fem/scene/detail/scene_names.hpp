@@ -30,6 +30,8 @@ inline constexpr EnumNames<ContactLawKind, 6> law_names{{{ContactLawKind::paper,
                                                          {ContactLawKind::hunt_crossley, "hunt_crossley"},
                                                          {ContactLawKind::stick_slip, "stick_slip"},
                                                          {ContactLawKind::stiff, "stiff"}}};
+inline constexpr EnumNames<ImplicitContact, 3> implicit_contact_names{
+    {{ImplicitContact::none, "none"}, {ImplicitContact::rigid, "rigid"}, {ImplicitContact::all, "all"}}};
 inline constexpr EnumNames<IntegratorKind, 3> integrator_names{
     {{IntegratorKind::paper_newmark, "paper_newmark"},
      {IntegratorKind::average_acceleration, "average_acceleration"},
