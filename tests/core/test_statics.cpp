@@ -341,8 +341,8 @@ TEST_CASE("displacement control gives the cantilever's tip stiffness", "[statics
       REQUIRE(path.points.size() == 5);
       for (size_t i = 1; i < path.points.size(); ++i) {
         const auto& p = path.points[i];
-        INFO("L = " << L << ", elements " << n << ", increment " << i << ": lambda P_ref / (k v) = "
-                    << p.load_factor * P_ref / (k * p.displacement));
+        INFO("L = " << L << ", elements " << n << ", increment " << i << ": lambda P_ref / (k v) - 1 = "
+                    << p.load_factor * P_ref / (k * p.displacement) - 1);
         CHECK(p.displacement == Approx(v * i / 4).epsilon(1e-12));
         CHECK(std::abs(p.load_factor * P_ref / (k * p.displacement) - 1) < 1e-9);
       }
