@@ -283,21 +283,22 @@ class StaticSolver {
     }
   }
   // An increment that converged (a) is committed and the ASI rule applied. When it moved integration
-  // points (a hinge formed or closed), the forces at the new points can be off the yield surface (a
-  // section yields beyond Mp within the increment that makes it a hinge): equilibrium is sought again
-  // under the increment's constraint (`again`) and committed, until no point moves. Without this, an
-  // increment could carry a load past the collapse load (by what the last hinge's section took
-  // elastically beyond Mp) and report it as converged.
+  // points, the forces at a new hinge can be off the yield surface (its section yielded beyond Mp
+  // within the increment that makes it a hinge): equilibrium is sought again under the increment's
+  // constraint (`again`) and committed. Without this, an increment could carry a load past the
+  // collapse load (by what the last hinge's section took elastically beyond Mp) and report it as
+  // converged. The ASI rule is not applied to that second solve: its small change would close hinges
+  // that merely did not flow in it (the rule closes a hinge without a plastic increment), and they
+  // would open again at the next increment, a plateau that wobbles; hinges that form or close in it
+  // are found at the end of the next increment.
   template <class Again>
   Attempt settled(Attempt a, Again&& again) {
-    for (int pass = 0; pass < 8 && a.outcome == Outcome::converged; ++pass) {
-      s_.committed_ = s_.trial_;
-      if (s_.shift_integration_points() == 0) return a;
-      const Attempt b = again();
-      a = {b.outcome, a.iterations + b.iterations, b.residual};
-    }
-    if (a.outcome == Outcome::converged) s_.committed_ = s_.trial_;  // still moving: the next increment goes on
-    return a;
+    if (a.outcome != Outcome::converged) return a;
+    s_.committed_ = s_.trial_;
+    if (s_.shift_integration_points() == 0) return a;
+    const Attempt b = again();
+    if (b.outcome == Outcome::converged) s_.committed_ = s_.trial_;
+    return {b.outcome, a.iterations + b.iterations, b.residual};
   }
   void save(double lambda) {
     saved_u_ = s_.u_;
