@@ -6,5 +6,6 @@
 #include "core/elements.hpp"
 #include "core/integrators.hpp"
 #include "core/solvers.hpp"
+#include "core/statics.hpp"
 #include "core/simulation.hpp"
 #include "core/modal.hpp"

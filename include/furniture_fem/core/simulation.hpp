@@ -28,11 +28,13 @@
 #include "integrators.hpp"
 #include "model.hpp"
 #include "solvers.hpp"
+#include "statics.hpp"
 
 #define FURNITURE_FEM_CORE_INTERNAL
 #include "detail/body_system.hpp"
 #include "detail/parallel.hpp"
 #include "detail/rotation.hpp"
+#include "detail/static_path.hpp"
 #undef FURNITURE_FEM_CORE_INTERNAL
 
 namespace furniture_fem {
@@ -281,49 +283,32 @@ class Simulation {
     run_until(t_end, [](const Simulation&, const StepInfo&) {});
   }
 
-  // ---- statics: load increments with full Newton (tangent refreshed at every iteration) ----
-  struct StaticResult {
-    int increments = 0, iterations = 0;
-    bool converged = true;
-    double residual = 0;
-  };
+  // ---- statics (detail/static_path.hpp; docs/core/theory.md section 7) ----
+  // None of the static solves throws when the structure cannot carry the load (a mechanism, a limit
+  // point): the result says why it stopped and the simulation is left in the last converged state.
+  // They throw for a model statics cannot solve (a rigid body) and for bad arguments.
+  using StaticResult = furniture_fem::StaticResult;
+  // Load control: the load factor ramped from 1/increments to 1, full Newton (tangent refreshed at
+  // every iteration) at each increment.
   StaticResult solve_static(int increments = 1, int max_iterations = 50, double tolerance = 1e-9) {
-    StaticResult res;
     const StaticScope statics(*this, StaticScope::restart_dynamics);
-    if (!started_) start();
-    for (int k = 1; k <= increments; ++k) {
-      load_factor_ = double(k) / increments;
-      external_forces(t_, fext1_);
-      bool ok = false;
-      for (int it = 0; it < max_iterations; ++it) {
-        evaluate_elements(true);
-        for (auto& bs : systems_) bs.needs_refresh = true;
-        Du_.setZero();
-        const double rel = static_residual();
-        res.residual = rel;
-        if (rel < tolerance) {
-          ok = true;
-          break;
-        }
-        solve_bodies();
-        ++res.iterations;
-        for (int n = 0; n < model_.num_nodes(); ++n) {
-          u_[n] += Du_.segment<3>(6 * n);
-          x_[n] = model_.node(n).X + u_[n];
-          R_[n] = detail::rotation_exp(Du_.segment<3>(6 * n + 3)) * R_[n];
-        }
-        if (!Du_.allFinite()) throw SimulationError(t_, "static solve: the increment is not finite");
-      }
-      committed_ = trial_;
-      shift_integration_points();
-      res.increments = k;
-      if (!ok) {
-        res.converged = false;
-        break;
-      }
-    }
-    return res;
+    return detail::StaticSolver<Simulation>(*this).load_control(increments, max_iterations, tolerance);
   }
+  // Displacement control: DOF `dof` (0-2 translations, 3-5 rotations) of `node` moved from where it is
+  // to `target` in equal increments; the path gives the load factor of the reference load (nodal loads,
+  // gravity, spring targets) at each. The state starts at load factor start_load_factor.
+  StaticPath solve_static_displacement(int node, int dof, double target, int increments, int max_iterations = 50,
+                                       double tolerance = 1e-9, double start_load_factor = 0) {
+    const StaticScope statics(*this, StaticScope::restart_dynamics);
+    return detail::StaticSolver<Simulation>(*this).displacement_control(node, dof, target, increments, max_iterations,
+                                                                        tolerance, start_load_factor);
+  }
+  // Arc-length (Crisfield, cylindrical): follows the path past limit points and along mechanisms.
+  StaticPath solve_static_arc_length(const ArcLengthOptions& options) {
+    const StaticScope statics(*this, StaticScope::restart_dynamics);
+    return detail::StaticSolver<Simulation>(*this).arc_length(options);
+  }
+  double load_factor() const { return load_factor_; }
   void set_load_factor(double f) { load_factor_ = f; }
 
   // ---- results ----
@@ -388,6 +373,8 @@ class Simulation {
   const Integrator& integrator() const { return integrator_; }
 
  private:
+  friend class detail::StaticSolver<Simulation>;
+
   // Statics for the life of the scope: the loads at the load factor, no inertia in the matrices. Its
   // end, however reached, restores the mode. After a static solve (restart_dynamics) the next dynamic
   // step starts again (start()): it assembles the effective (dynamic) matrix in place of the static
