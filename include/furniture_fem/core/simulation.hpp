@@ -339,6 +339,13 @@ class Simulation {
   const Eigen::VectorXd& velocities() const { return v_; }
   double nodal_mass(int n) const { return mass_[6 * n]; }
   double nodal_rotary_inertia(int n) const { return mass_[6 * n + 3]; }
+  // A node's rotary inertia tensor (world axes) as the dynamics use it: turned with the node on a rigid
+  // body, the diagonal in world axes on a flexible one (the lumped approximation).
+  Mat3 node_rotary_inertia(int n) const {
+    const Vec3 D = mass_.segment<3>(6 * n + 3);
+    if (!systems_[model_.node(n).body].rigid || (D.x() == D.y() && D.y() == D.z())) return D.asDiagonal();
+    return R_[n] * D.asDiagonal() * R_[n].transpose();
+  }
   const State& element_state(int e) const { return committed_[e]; }
   // Current element frame (columns: local x, y, z in world axes).
   Mat3 element_frame(int e) const { return frames_[e]; }
@@ -361,12 +368,15 @@ class Simulation {
   Vec3 angular_momentum(const Vec3& about = Vec3::Zero()) const {
     Vec3 L = Vec3::Zero();
     for (int n = 0; n < model_.num_nodes(); ++n)
-      L += (x_[n] - about).cross(mass_[6 * n] * v_.segment<3>(6 * n)) + mass_[6 * n + 3] * v_.segment<3>(6 * n + 3);
+      L += (x_[n] - about).cross(mass_[6 * n] * v_.segment<3>(6 * n)) + rotary_momentum(n);
     return L;
   }
   EnergyLedger energy() const {
     EnergyLedger e = ledger_;
-    e.kinetic = 0.5 * (v_.array() * v_.array() * mass_.array()).sum();
+    e.kinetic = 0;
+    for (int n = 0; n < model_.num_nodes(); ++n)
+      e.kinetic += 0.5 * (mass_[6 * n] * v_.segment<3>(6 * n).squaredNorm() +
+                          v_.segment<3>(6 * n + 3).dot(rotary_momentum(n)));
     e.gravity_potential = 0;
     for (int n = 0; n < model_.num_nodes(); ++n) e.gravity_potential -= mass_[6 * n] * opt_.gravity.dot(x_[n]);
     e.strain = 0;
@@ -518,6 +528,13 @@ class Simulation {
         mass_.segment<3>(6 * node).array() += 0.5 * m;
         mass_.segment<3>(6 * node + 3).array() += 0.5 * J;
       }
+    }
+    // Point masses: their principal rotary inertia goes on the diagonal in the node's initial axes. A
+    // rigid body turns it with the node (RigidBody::rotary_inertia); a flexible body keeps the diagonal
+    // in world axes, exact for isotropic inertia and while the node turns little (docs/core/theory.md).
+    for (const auto& p : model_.point_masses()) {
+      mass_.segment<3>(6 * p.node).array() += p.mass;
+      mass_.segment<3>(6 * p.node + 3) += p.inertia;
     }
     trial_ = committed_;
     for (int n = 0; n < nn; ++n)
@@ -1096,6 +1113,36 @@ class Simulation {
       }
     }
 
+    // The body's inertia tensor about c (world axes): sum over nodes of m (|r|^2 I - r r^T) + R_n D_n R_n^T,
+    // D_n the node's rotary inertia (diagonal in its initial axes: members' isotropic part, point masses).
+    static Mat3 rotary_inertia(const Simulation& sim, const detail::BodySystem& bs, const Vec3& c) {
+      Mat3 I = Mat3::Zero();
+      for (int n : bs.nodes) {
+        const Vec3 r = sim.x_[n] - c;
+        I += sim.mass_[6 * n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose()) +
+             sim.node_rotary_inertia(n);
+      }
+      return I;
+    }
+
+    // The nodal residual's rotary inertia is the diagonal D_n in world axes (exact for isotropic D_n).
+    // For an anisotropic node of a rigid body, the moment it should have: the turned tensor I_n = R D R^T
+    // on the (generalized-alpha) angular acceleration, and the gyroscopic w x I_n w. Returns the
+    // correction D alpha - I_n alpha - w x I_n w, summed over the body's nodes (zero for isotropic ones).
+    static Vec3 anisotropic_inertia_moment(const Simulation& sim, const detail::BodySystem& bs) {
+      const double am = sim.coef_.alpha_m;
+      Vec3 M = Vec3::Zero();
+      for (int n : bs.nodes) {
+        const Vec3 D = sim.mass_.template segment<3>(6 * n + 3);
+        if (D.x() == D.y() && D.y() == D.z()) continue;
+        const Vec3 alpha = (1 - am) * sim.a_.template segment<3>(6 * n + 3) + am * sim.an_.template segment<3>(6 * n + 3);
+        const Vec3 w = sim.v_.template segment<3>(6 * n + 3);
+        const Mat3 In = sim.node_rotary_inertia(n);
+        M += D.cwiseProduct(alpha) - In * alpha - w.cross(In * w);
+      }
+      return M;
+    }
+
     // Nodal increments dx_n = dc + dtheta x r_n, rotations dtheta; the nodal residual and effective
     // mass reduced to 6 x 6 (T^T r, T^T M* T) and solved.
     static void newton_step(Simulation& sim, detail::BodySystem& bs) {
@@ -1108,16 +1155,17 @@ class Simulation {
       for (int n : bs.nodes) {
         const Vec3 r = sim.x_[n] - c;
         const Mat3 S = detail::skew(r);  // dtheta x r = -S dtheta
-        const double m = mf * mass[6 * n], J = mf * mass[6 * n + 3];
+        const double m = mf * mass[6 * n];
         A.template block<3, 3>(0, 0) += m * Mat3::Identity();
         A.template block<3, 3>(0, 3) -= m * S;
         A.template block<3, 3>(3, 0) += m * S;
-        A.template block<3, 3>(3, 3) += -m * S * S + J * Mat3::Identity();
         const Vec3 rf = r_nodal.template segment<3>(6 * n), rm = r_nodal.template segment<3>(6 * n + 3);
         R6.template head<3>() += rf;
         R6.template tail<3>() += S * rf + rm;
       }
       if (!sim.static_) add_contact_terms(sim, bs, c, A);
+      A.template block<3, 3>(3, 3) += mf * rotary_inertia(sim, bs, c);
+      R6.template tail<3>() += anisotropic_inertia_moment(sim, bs);
       const Vec6 dq = A.ldlt().solve(R6);
       bs.rigid_dc += dq.template head<3>();
       bs.rigid_Q = detail::rotation_exp(dq.template tail<3>()) * bs.rigid_Q;
@@ -1142,6 +1190,8 @@ class Simulation {
     }
     return "a non-finite value appeared; the step diverged (try a smaller dt)";
   }
+
+  Vec3 rotary_momentum(int n) const { return node_rotary_inertia(n) * v_.segment<3>(6 * n + 3); }
 
   double dof_value(int n, int dof) const {
     return dof < 3 ? u_[n][dof] : detail::rotation_log(R_[n])[dof - 3];
