@@ -162,13 +162,15 @@ struct Member {
   int node_i = 0, node_j = 0;
 };
 
-// A point mass on a node: mass (kg) and principal moments of rotary inertia (kg m^2) about the node, in
-// the node's initial axes (the body axes: they turn with the node). Items whose mass is not carried by
-// their members (a solid block on a light frame of its edges) put it here.
+// A point mass on a node: mass (kg) and principal moments of rotary inertia (kg m^2) about the node
+// along `axes` (columns, world axes at the start; they turn with the node). Items whose mass is not
+// carried by their members (a solid block on a light frame of its edges) put it here.
 struct PointMass {
   int node = 0;
   double mass = 0;
   Vec3 inertia = Vec3::Zero();
+  Mat3 axes = Mat3::Identity();
+  Mat3 inertia_tensor() const { return axes * inertia.asDiagonal() * axes.transpose(); }
 };
 
 struct Body {
@@ -218,9 +220,10 @@ class Model {
   }
   void fix(int node, unsigned dofs = ALL_DOFS) { nodes_.at(node).fixed |= dofs; }
 
-  // Adds a point mass (kg) and principal rotary inertia (kg m^2, the node's initial axes) to a node;
-  // several on one node add up. The simulation lumps them with the members' masses.
-  void add_point_mass(int node, double mass, const Vec3& inertia = Vec3::Zero()) {
+  // Adds a point mass (kg) and principal rotary inertia (kg m^2) to a node, the principal axes the
+  // columns of `axes` (a rotation; default the node's initial axes, i.e. world axes); several on one
+  // node add up. The simulation lumps them with the members' masses.
+  void add_point_mass(int node, double mass, const Vec3& inertia = Vec3::Zero(), const Mat3& axes = Mat3::Identity()) {
     if (node < 0 || node >= num_nodes())
       throw ModelError("add_point_mass: node index out of range: " + std::to_string(node));
     const std::string who = "point mass on node " + std::to_string(node) + " of body '" + bodies_[nodes_[node].body].name + "'";
@@ -230,7 +233,9 @@ class Model {
       if (!(inertia[i] >= 0) || !std::isfinite(inertia[i]))
         throw ModelError(who + ": rotary inertia must be non-negative and finite (got " + detail::fmt(inertia[i]) +
                          " kg m^2 about axis " + std::string(1, "xyz"[i]) + ")");
-    point_masses_.push_back(PointMass{node, mass, inertia});
+    if (!axes.allFinite() || (axes.transpose() * axes - Mat3::Identity()).norm() > 1e-9 || axes.determinant() < 0)
+      throw ModelError(who + ": the principal axes must be a rotation (orthonormal columns, right-handed)");
+    point_masses_.push_back(PointMass{node, mass, inertia, axes});
   }
 
   // Adds a member from node i to node j, split into elements of about opts.target_length (an even
@@ -381,7 +386,7 @@ class Model {
     for (const auto& p : point_masses_)
       if (nodes_[p.node].body == b) {
         add_mass(nodes_[p.node].X, p.mass);
-        I += p.inertia.asDiagonal();
+        I += p.inertia_tensor();
       }
     return I;
   }

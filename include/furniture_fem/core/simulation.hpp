@@ -339,12 +339,12 @@ class Simulation {
   const Eigen::VectorXd& velocities() const { return v_; }
   double nodal_mass(int n) const { return mass_[6 * n]; }
   double nodal_rotary_inertia(int n) const { return mass_[6 * n + 3]; }
-  // A node's rotary inertia tensor (world axes) as the dynamics use it: turned with the node on a rigid
-  // body, the diagonal in world axes on a flexible one (the lumped approximation).
+  // A node's rotary inertia tensor (world axes) as the dynamics use it: on a rigid body the initial
+  // tensor turned with the node, on a flexible one the lumped diagonal in world axes.
   Mat3 node_rotary_inertia(int n) const {
-    const Vec3 D = mass_.segment<3>(6 * n + 3);
-    if (!systems_[model_.node(n).body].rigid || (D.x() == D.y() && D.y() == D.z())) return D.asDiagonal();
-    return R_[n] * D.asDiagonal() * R_[n].transpose();
+    const int k = rotary_index_[n];
+    if (k < 0 || !systems_[model_.node(n).body].rigid) return mass_.segment<3>(6 * n + 3).asDiagonal();
+    return R_[n] * rotary0_[k] * R_[n].transpose();
   }
   const State& element_state(int e) const { return committed_[e]; }
   // Current element frame (columns: local x, y, z in world axes).
@@ -529,12 +529,21 @@ class Simulation {
         mass_.segment<3>(6 * node + 3).array() += 0.5 * J;
       }
     }
-    // Point masses: their principal rotary inertia goes on the diagonal in the node's initial axes. A
-    // rigid body turns it with the node (RigidBody::rotary_inertia); a flexible body keeps the diagonal
-    // in world axes, exact for isotropic inertia and while the node turns little (docs/core/theory.md).
+    // Point masses. A node with rotary inertia keeps its initial tensor (members' isotropic part and
+    // the point's), which a rigid body turns with the node (node_rotary_inertia); the lumped diagonal
+    // (mass_) holds the tensor's diagonal, what a flexible body uses: exact for isotropic inertia, an
+    // approximation for a node whose anisotropic inertia turns (docs/core/theory.md).
+    rotary_index_.assign(nn, -1);
     for (const auto& p : model_.point_masses()) {
       mass_.segment<3>(6 * p.node).array() += p.mass;
-      mass_.segment<3>(6 * p.node + 3) += p.inertia;
+      if (p.inertia.isZero(0.0)) continue;
+      int& k = rotary_index_[p.node];
+      if (k < 0) {
+        k = static_cast<int>(rotary0_.size());
+        rotary0_.push_back(mass_[6 * p.node + 3] * Mat3::Identity());
+      }
+      rotary0_[k] += p.inertia_tensor();
+      mass_.segment<3>(6 * p.node + 3) += p.inertia_tensor().diagonal();
     }
     trial_ = committed_;
     for (int n = 0; n < nn; ++n)
@@ -1113,8 +1122,8 @@ class Simulation {
       }
     }
 
-    // The body's inertia tensor about c (world axes): sum over nodes of m (|r|^2 I - r r^T) + R_n D_n R_n^T,
-    // D_n the node's rotary inertia (diagonal in its initial axes: members' isotropic part, point masses).
+    // The body's inertia tensor about c (world axes): sum over nodes of m (|r|^2 I - r r^T) + R_n T_n R_n^T,
+    // T_n the node's initial rotary inertia (members' isotropic part, point masses; node_rotary_inertia).
     static Mat3 rotary_inertia(const Simulation& sim, const detail::BodySystem& bs, const Vec3& c) {
       Mat3 I = Mat3::Zero();
       for (int n : bs.nodes) {
@@ -1126,15 +1135,15 @@ class Simulation {
     }
 
     // The nodal residual's rotary inertia is the diagonal D_n in world axes (exact for isotropic D_n).
-    // For an anisotropic node of a rigid body, the moment it should have: the turned tensor I_n = R D R^T
-    // on the (generalized-alpha) angular acceleration, and the gyroscopic w x I_n w. Returns the
-    // correction D alpha - I_n alpha - w x I_n w, summed over the body's nodes (zero for isotropic ones).
+    // For a node with a point inertia on a rigid body, the moment it should have: the turned tensor
+    // I_n = R_n T_n R_n^T (T_n the initial tensor) on the (generalized-alpha) angular acceleration, and
+    // the gyroscopic w x I_n w. Returns the correction D alpha - I_n alpha - w x I_n w over the body.
     static Vec3 anisotropic_inertia_moment(const Simulation& sim, const detail::BodySystem& bs) {
       const double am = sim.coef_.alpha_m;
       Vec3 M = Vec3::Zero();
       for (int n : bs.nodes) {
+        if (sim.rotary_index_[n] < 0) continue;  // isotropic: the diagonal is exact, w x J w = 0
         const Vec3 D = sim.mass_.template segment<3>(6 * n + 3);
-        if (D.x() == D.y() && D.y() == D.z()) continue;
         const Vec3 alpha = (1 - am) * sim.a_.template segment<3>(6 * n + 3) + am * sim.an_.template segment<3>(6 * n + 3);
         const Vec3 w = sim.v_.template segment<3>(6 * n + 3);
         const Mat3 In = sim.node_rotary_inertia(n);
@@ -1266,6 +1275,8 @@ class Simulation {
 
   std::vector<Vec3> x_, u_, u0_;  // positions, displacements (kept apart for precision)
   std::vector<Mat3> R_, R0_;
+  std::vector<int> rotary_index_;  // per node: its entry in rotary0_, or -1 (isotropic rotary inertia)
+  std::vector<Mat3> rotary0_;      // initial rotary inertia tensors of the nodes with a point inertia
   Eigen::VectorXd v_, a_, vn_, an_, v_contact_, Du_, r_, fint_, fext0_, fext1_, fc0_, fc1_, fnet0_, mass_, nodal_load_, fgrav_;
   Eigen::VectorXd contact_delta_;
   std::vector<Vec3> predictor_shift_;  // the linearised contact forces' shift from v_contact_ to v_ at the predictor
