@@ -75,6 +75,25 @@ TEST_CASE("a points motion is read, scaled by level and interpolated linearly at
   CHECK(m.t_end() == 1.0);
 }
 
+TEST_CASE("TableMotion::from_points checks its points, naming the component", "[excitation][points]") {
+  const auto error = [](PiecewiseLinear x, PiecewiseLinear y) {
+    try {
+      (void)TableMotion::from_points(std::move(x), std::move(y));
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const PiecewiseLinear good{{0.0, 1.0}, {0.0, 2.0}};
+  CHECK(error(good, {}) == "no error");
+  CHECK_THAT(error(good, {{0.0, 0.5, 0.5}, {1, 2, 3}}), Contains("y") && Contains("point 2 at 0.5 s follows 0.5 s"));
+  CHECK_THAT(error({}, good), Contains("x") && Contains("at least one point"));
+  CHECK_THAT(error(good, {{0.0, 1.0}, {1.0, std::numeric_limits<double>::infinity()}}), Contains("point 1 is not finite"));
+  const TableMotion m = TableMotion::from_points(good);
+  CHECK_FALSE(m.is_3d());
+  CHECK(m(0.25) == Vec3(0.5, 0, 0));
+}
+
 TEST_CASE("a points motion round-trips through to_json", "[scene][points][json]") {
   const SceneSpec s = parse_scene_json(block_scene(ramp), "points.json");
   const json once = to_json(s);
