@@ -86,7 +86,7 @@ TEST_CASE("TableMotion::from_points checks its points, naming the component", "[
   };
   const PiecewiseLinear good{{0.0, 1.0}, {0.0, 2.0}};
   CHECK(error(good, {}) == "no error");
-  CHECK_THAT(error(good, {{0.0, 0.5, 0.5}, {1, 2, 3}}), Contains("y") && Contains("point 2 at 0.5 s follows 0.5 s"));
+  CHECK_THAT(error(good, {{0.0, 0.5, 0.5}, {1, 2, 3}}), Contains("from_points: y: ") && Contains("point 2 at 0.5 s follows 0.5 s"));
   CHECK_THAT(error({}, good), Contains("x") && Contains("at least one point"));
   CHECK_THAT(error(good, {{0.0, 1.0}, {1.0, std::numeric_limits<double>::infinity()}}), Contains("point 1 is not finite"));
   const TableMotion m = TableMotion::from_points(good);

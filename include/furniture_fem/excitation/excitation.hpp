@@ -91,7 +91,7 @@ struct PiecewiseLinear {
   // Throws InputError naming the component and the offending point: at least one point, finite
   // values, times strictly increasing.
   void check(const std::string& component) const {
-    const auto fail = [&](const std::string& what) { throw InputError("", 0, component, what); };
+    const auto fail = [&](const std::string& what) { throw InputError("TableMotion::from_points", 0, component, what); };
     if (t.empty() || t.size() != a.size()) fail("needs at least one point, with one acceleration per time");
     for (std::size_t i = 0; i < t.size(); ++i) {
       if (!std::isfinite(t[i]) || !std::isfinite(a[i])) fail("point " + std::to_string(i) + " is not finite");
