@@ -64,13 +64,14 @@ TEST_CASE("add_point_mass refuses bad input with a named error", "[model][point 
 }
 
 TEST_CASE("a point inertia along turned principal axes is the turned tensor", "[model][point mass]") {
-  // I = A diag(J) A^T: with A a 30-degree turn about z, Ixy = (Jy - Jx) sin 30 cos 30 = 0.0866 kg m^2.
+  // I = A diag(J) A^T: with A a 30-degree turn about z, Ixy = (Jx - Jy) sin 30 cos 30 = -0.0866 kg m^2
+  // (the arms along the axes add no product of inertia).
   const Mat3 A = Eigen::AngleAxisd(std::numbers::pi / 6, Vec3::UnitZ()).toRotationMatrix();
   Hub h(Vec3::Zero(), A), plain(Vec3::Zero());
   const Mat3 I = h.model.body_inertia(h.body, Vec3::Zero()) - plain.model.body_inertia(plain.body, Vec3::Zero());
   const Mat3 expected = A * h.J.asDiagonal() * A.transpose() - h.J.asDiagonal().toDenseMatrix();
   CHECK((I - expected).norm() < 1e-12);
-  CHECK(h.model.body_inertia(h.body, Vec3::Zero())(0, 1) == Approx(0.2 * std::sqrt(3.0) / 4).epsilon(1e-4));
+  CHECK(h.model.body_inertia(h.body, Vec3::Zero())(0, 1) == Approx(-0.2 * std::sqrt(3.0) / 4).epsilon(1e-12));
 }
 
 TEST_CASE("a point mass adds to the body's mass, centre of gravity and inertia", "[model][point mass]") {
@@ -141,8 +142,9 @@ TEST_CASE("a free rigid body with anisotropic inertia spinning off its principal
   // nutates (the tensor turns with the body, and the gyroscopic w x I w enters the rigid solve). Spin
   // of 4 rad/s about (1, 2, 3) / |.|, 2 s (about 1.3 turns), average acceleration carried over, dt = 1
   // ms and 0.5 ms. Measured: |dL|/|L| 4.9e-4 and 2.4e-4 (first order: the gyroscopic moment is taken at
-  // the predictor's velocity, not iterated), |dT|/T 7.5e-7 and 1.9e-7; w moves by 55 % of |w|. Bounds:
-  // 1e-3 and 1e-5 at 1 ms, and the momentum error halving with dt (ratio within 0.4-0.6).
+  // the predictor's velocity, not iterated), |dT|/T 7.5e-7 and 1.9e-7; w moves by 55 % of |w|; with the
+  // principal axes turned (the full tensor) 6.7e-4 and 9.9e-7. Bounds: 1e-3 and 1e-5 at 1 ms, and the
+  // momentum error halving with dt (ratio within 0.4-0.6).
   const auto run = [](double dt, Mat3 axes = Mat3::Identity()) {
     Hub h(Vec3(0.1, -0.2, 0.5), axes);
     SimulationOptions opt;
