@@ -107,7 +107,8 @@ TEST_CASE("a block refuses what a rigid solid box cannot take, naming the item",
 }
 
 TEST_CASE("the block kind is registered and builds from its parameters", "[furniture][block][kinds]") {
-  const ItemKindEntry& kind = builtin_item_kind_registry().at(ItemKind::block);
+  const ItemKindRegistry registry = builtin_item_kind_registry();
+  const ItemKindEntry& kind = registry.at(ItemKind::block);
   Model model;
   BuildOptions o = block_options(12.0);
   const auto infos = kind.build(model, {}, kind.values({{"width", 0.3}, {"height", 0.9}}), o);
