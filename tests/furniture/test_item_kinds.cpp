@@ -9,7 +9,7 @@ using namespace furniture_fem;
 
 TEST_CASE("the built-in kinds are registered in order with their parameters", "[furniture][kinds]") {
   const ItemKindRegistry registry = builtin_item_kind_registry();
-  CHECK(registry.names() == "tall_cabinet, separated_cabinets, side_table, desk, office_chair, bookshelf, locker, table");
+  CHECK(registry.names() == "tall_cabinet, separated_cabinets, side_table, desk, office_chair, bookshelf, locker, table, block");
   CHECK(registry.at(ItemKind::desk).parameters.empty());
   CHECK_FALSE(registry.at(ItemKind::separated_cabinets).single_body);
   CHECK(registry.at(ItemKind::separated_cabinets).size(ItemValues("separated_cabinets", {})).z() == Approx(1.85));

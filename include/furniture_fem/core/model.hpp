@@ -162,6 +162,17 @@ struct Member {
   int node_i = 0, node_j = 0;
 };
 
+// A point mass on a node: mass (kg) and principal moments of rotary inertia (kg m^2) about the node
+// along `axes` (columns, world axes at the start; they turn with the node). Items whose mass is not
+// carried by their members (a solid block on a light frame of its edges) put it here.
+struct PointMass {
+  int node = 0;
+  double mass = 0;
+  Vec3 inertia = Vec3::Zero();
+  Mat3 axes = Mat3::Identity();
+  Mat3 inertia_tensor() const { return axes * inertia.asDiagonal() * axes.transpose(); }
+};
+
 struct Body {
   std::string name;
   std::vector<int> nodes, elements, members;
@@ -208,6 +219,24 @@ class Model {
     return static_cast<int>(nodes_.size()) - 1;
   }
   void fix(int node, unsigned dofs = ALL_DOFS) { nodes_.at(node).fixed |= dofs; }
+
+  // Adds a point mass (kg) and principal rotary inertia (kg m^2) to a node, the principal axes the
+  // columns of `axes` (a rotation; default the node's initial axes, i.e. world axes); several on one
+  // node add up. The simulation lumps them with the members' masses.
+  void add_point_mass(int node, double mass, const Vec3& inertia = Vec3::Zero(), const Mat3& axes = Mat3::Identity()) {
+    if (node < 0 || node >= num_nodes())
+      throw ModelError("add_point_mass: node index out of range: " + std::to_string(node));
+    const std::string who = "point mass on node " + std::to_string(node) + " of body '" + bodies_[nodes_[node].body].name + "'";
+    if (!(mass >= 0) || !std::isfinite(mass))
+      throw ModelError(who + ": mass must be non-negative and finite (got " + detail::fmt(mass) + " kg)");
+    for (int i = 0; i < 3; ++i)
+      if (!(inertia[i] >= 0) || !std::isfinite(inertia[i]))
+        throw ModelError(who + ": rotary inertia must be non-negative and finite (got " + detail::fmt(inertia[i]) +
+                         " kg m^2 about axis " + std::string(1, "xyz"[i]) + ")");
+    if (!axes.allFinite() || (axes.transpose() * axes - Mat3::Identity()).norm() > 1e-9 || axes.determinant() < 0)
+      throw ModelError(who + ": the principal axes must be a rotation (orthonormal columns, right-handed)");
+    point_masses_.push_back(PointMass{node, mass, inertia, axes});
+  }
 
   // Adds a member from node i to node j, split into elements of about opts.target_length (an even
   // count when opts.pairs), creating the intermediate nodes. Returns the member index.
@@ -315,10 +344,12 @@ class Model {
            std::to_string(e) + ")";
   }
 
-  // Mass of a body (kg) and its centre of gravity in the initial configuration.
+  // Mass of a body (kg) and its centre of gravity in the initial configuration, point masses included.
   double body_mass(int b) const {
     double m = 0;
     for (int e : bodies_.at(b).elements) m += elements_[e].line_mass * element_length(e);
+    for (const auto& p : point_masses_)
+      if (nodes_[p.node].body == b) m += p.mass;
     return m;
   }
   Vec3 body_centre_of_gravity(int b) const {
@@ -329,7 +360,35 @@ class Model {
       m += me;
       c += me * 0.5 * (nodes_[elements_[e].n1].X + nodes_[elements_[e].n2].X);
     }
+    for (const auto& p : point_masses_)
+      if (nodes_[p.node].body == b) {
+        m += p.mass;
+        c += p.mass * nodes_[p.node].X;
+      }
     return m > 0 ? Vec3(c / m) : c;
+  }
+  // Inertia tensor (kg m^2) of a body about a point, in the initial configuration, with the masses
+  // lumped as the simulation lumps them: half of each element's mass and of its rotary inertia
+  // rho (Iy + Iz) L (isotropic) on each end node, and the point masses with their rotary inertia.
+  Mat3 body_inertia(int b, const Vec3& about) const {
+    Mat3 I = Mat3::Zero();
+    const auto add_mass = [&](const Vec3& x, double m) {
+      const Vec3 r = x - about;
+      I += m * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
+    };
+    for (int e : bodies_.at(b).elements) {
+      const auto& el = elements_[e];
+      const Section& s = sections_[el.section];
+      const double m = el.line_mass * element_length(e), J = el.line_mass / s.A * (s.Iy + s.Iz) * element_length(e);
+      for (int n : {el.n1, el.n2}) add_mass(nodes_[n].X, 0.5 * m);
+      I += J * Mat3::Identity();  // two ends, half each
+    }
+    for (const auto& p : point_masses_)
+      if (nodes_[p.node].body == b) {
+        add_mass(nodes_[p.node].X, p.mass);
+        I += p.inertia_tensor();
+      }
+    return I;
   }
   double element_length(int e) const {
     return (nodes_[elements_[e].n2].X - nodes_[elements_[e].n1].X).norm();
@@ -346,6 +405,7 @@ class Model {
   const std::vector<Body>& bodies() const { return bodies_; }
   const std::vector<Section>& sections() const { return sections_; }
   const std::vector<Material>& materials() const { return materials_; }
+  const std::vector<PointMass>& point_masses() const { return point_masses_; }
   const Node& node(int n) const { return nodes_.at(n); }
   const Member& member(int m) const { return members_.at(m); }
   const Body& body(int b) const { return bodies_.at(b); }
@@ -369,6 +429,7 @@ class Model {
   std::vector<Body> bodies_;
   std::vector<Section> sections_;
   std::vector<Material> materials_;
+  std::vector<PointMass> point_masses_;
 };
 
 }  // namespace furniture_fem

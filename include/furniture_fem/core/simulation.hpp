@@ -324,6 +324,13 @@ class Simulation {
   const Eigen::VectorXd& velocities() const { return v_; }
   double nodal_mass(int n) const { return mass_[6 * n]; }
   double nodal_rotary_inertia(int n) const { return mass_[6 * n + 3]; }
+  // A node's rotary inertia tensor (world axes) as the dynamics use it: on a rigid body the initial
+  // tensor turned with the node, on a flexible one the lumped diagonal in world axes.
+  Mat3 node_rotary_inertia(int n) const {
+    const int k = rotary_index_[n];
+    if (k < 0 || !systems_[model_.node(n).body].rigid) return mass_.segment<3>(6 * n + 3).asDiagonal();
+    return R_[n] * rotary0_[k] * R_[n].transpose();
+  }
   const State& element_state(int e) const { return committed_[e]; }
   // Current element frame (columns: local x, y, z in world axes).
   Mat3 element_frame(int e) const { return frames_[e]; }
@@ -346,12 +353,15 @@ class Simulation {
   Vec3 angular_momentum(const Vec3& about = Vec3::Zero()) const {
     Vec3 L = Vec3::Zero();
     for (int n = 0; n < model_.num_nodes(); ++n)
-      L += (x_[n] - about).cross(mass_[6 * n] * v_.segment<3>(6 * n)) + mass_[6 * n + 3] * v_.segment<3>(6 * n + 3);
+      L += (x_[n] - about).cross(mass_[6 * n] * v_.segment<3>(6 * n)) + rotary_momentum(n);
     return L;
   }
   EnergyLedger energy() const {
     EnergyLedger e = ledger_;
-    e.kinetic = 0.5 * (v_.array() * v_.array() * mass_.array()).sum();
+    e.kinetic = 0;
+    for (int n = 0; n < model_.num_nodes(); ++n)
+      e.kinetic += 0.5 * (mass_[6 * n] * v_.segment<3>(6 * n).squaredNorm() +
+                          v_.segment<3>(6 * n + 3).dot(rotary_momentum(n)));
     e.gravity_potential = 0;
     for (int n = 0; n < model_.num_nodes(); ++n) e.gravity_potential -= mass_[6 * n] * opt_.gravity.dot(x_[n]);
     e.strain = 0;
@@ -505,6 +515,22 @@ class Simulation {
         mass_.segment<3>(6 * node).array() += 0.5 * m;
         mass_.segment<3>(6 * node + 3).array() += 0.5 * J;
       }
+    }
+    // Point masses. A node with rotary inertia keeps its initial tensor (members' isotropic part and
+    // the point's), which a rigid body turns with the node (node_rotary_inertia); the lumped diagonal
+    // (mass_) holds the tensor's diagonal, what a flexible body uses: exact for isotropic inertia, an
+    // approximation for a node whose anisotropic inertia turns (docs/core/theory.md).
+    rotary_index_.assign(nn, -1);
+    for (const auto& p : model_.point_masses()) {
+      mass_.segment<3>(6 * p.node).array() += p.mass;
+      if (p.inertia.isZero(0.0)) continue;
+      int& k = rotary_index_[p.node];
+      if (k < 0) {
+        k = static_cast<int>(rotary0_.size());
+        rotary0_.push_back(mass_[6 * p.node + 3] * Mat3::Identity());
+      }
+      rotary0_[k] += p.inertia_tensor();
+      mass_.segment<3>(6 * p.node + 3) += p.inertia_tensor().diagonal();
     }
     trial_ = committed_;
     for (int n = 0; n < nn; ++n)
@@ -1138,6 +1164,36 @@ class Simulation {
       }
     }
 
+    // The body's inertia tensor about c (world axes): sum over nodes of m (|r|^2 I - r r^T) + R_n T_n R_n^T,
+    // T_n the node's initial rotary inertia (members' isotropic part, point masses; node_rotary_inertia).
+    static Mat3 rotary_inertia(const Simulation& sim, const detail::BodySystem& bs, const Vec3& c) {
+      Mat3 I = Mat3::Zero();
+      for (int n : bs.nodes) {
+        const Vec3 r = sim.x_[n] - c;
+        I += sim.mass_[6 * n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose()) +
+             sim.node_rotary_inertia(n);
+      }
+      return I;
+    }
+
+    // The nodal residual's rotary inertia is the diagonal D_n in world axes (exact for isotropic D_n).
+    // For a node with a point inertia on a rigid body, the moment it should have: the turned tensor
+    // I_n = R_n T_n R_n^T (T_n the initial tensor) on the (generalized-alpha) angular acceleration, and
+    // the gyroscopic w x I_n w. Returns the correction D alpha - I_n alpha - w x I_n w over the body.
+    static Vec3 anisotropic_inertia_moment(const Simulation& sim, const detail::BodySystem& bs) {
+      const double am = sim.coef_.alpha_m;
+      Vec3 M = Vec3::Zero();
+      for (int n : bs.nodes) {
+        if (sim.rotary_index_[n] < 0) continue;  // isotropic: the diagonal is exact, w x J w = 0
+        const Vec3 D = sim.mass_.template segment<3>(6 * n + 3);
+        const Vec3 alpha = (1 - am) * sim.a_.template segment<3>(6 * n + 3) + am * sim.an_.template segment<3>(6 * n + 3);
+        const Vec3 w = sim.v_.template segment<3>(6 * n + 3);
+        const Mat3 In = sim.node_rotary_inertia(n);
+        M += D.cwiseProduct(alpha) - In * alpha - w.cross(In * w);
+      }
+      return M;
+    }
+
     // Nodal increments dx_n = dc + dtheta x r_n, rotations dtheta; the nodal residual and effective
     // mass reduced to 6 x 6 (T^T r, T^T M* T) and solved.
     static void newton_step(Simulation& sim, detail::BodySystem& bs) {
@@ -1150,16 +1206,17 @@ class Simulation {
       for (int n : bs.nodes) {
         const Vec3 r = sim.x_[n] - c;
         const Mat3 S = detail::skew(r);  // dtheta x r = -S dtheta
-        const double m = mf * mass[6 * n], J = mf * mass[6 * n + 3];
+        const double m = mf * mass[6 * n];
         A.template block<3, 3>(0, 0) += m * Mat3::Identity();
         A.template block<3, 3>(0, 3) -= m * S;
         A.template block<3, 3>(3, 0) += m * S;
-        A.template block<3, 3>(3, 3) += -m * S * S + J * Mat3::Identity();
         const Vec3 rf = r_nodal.template segment<3>(6 * n), rm = r_nodal.template segment<3>(6 * n + 3);
         R6.template head<3>() += rf;
         R6.template tail<3>() += S * rf + rm;
       }
       if (!sim.static_) add_contact_terms(sim, bs, c, A);
+      A.template block<3, 3>(3, 3) += mf * rotary_inertia(sim, bs, c);
+      R6.template tail<3>() += anisotropic_inertia_moment(sim, bs);
       const Vec6 dq = A.ldlt().solve(R6);
       bs.rigid_dc += dq.template head<3>();
       bs.rigid_Q = detail::rotation_exp(dq.template tail<3>()) * bs.rigid_Q;
@@ -1184,6 +1241,8 @@ class Simulation {
     }
     return "a non-finite value appeared; the step diverged (try a smaller dt)";
   }
+
+  Vec3 rotary_momentum(int n) const { return node_rotary_inertia(n) * v_.segment<3>(6 * n + 3); }
 
   double dof_value(int n, int dof) const {
     return dof < 3 ? u_[n][dof] : detail::rotation_log(R_[n])[dof - 3];
@@ -1258,6 +1317,8 @@ class Simulation {
 
   std::vector<Vec3> x_, u_, u0_;  // positions, displacements (kept apart for precision)
   std::vector<Mat3> R_, R0_;
+  std::vector<int> rotary_index_;  // per node: its entry in rotary0_, or -1 (isotropic rotary inertia)
+  std::vector<Mat3> rotary0_;      // initial rotary inertia tensors of the nodes with a point inertia
   Eigen::VectorXd v_, a_, vn_, an_, v_contact_, Du_, r_, fint_, fext0_, fext1_, fc0_, fc1_, fnet0_, mass_, nodal_load_, fgrav_;
   Eigen::VectorXd contact_delta_;
   std::vector<Vec3> predictor_shift_;  // the linearised contact forces' shift from v_contact_ to v_ at the predictor

@@ -82,18 +82,83 @@ struct Record {
   }
 };
 
+// One component of acceleration given by points (t_i, a_i) with strictly increasing times: linear in
+// between, zero before the first and after the last (a scene file's "points" source). Exact at any
+// time, where a Record would resample it.
+struct PiecewiseLinear {
+  std::vector<double> t, a;  // s, m/s^2
+
+  // Throws InputError naming the component and the offending point: at least one point, finite
+  // values, times strictly increasing.
+  void check(const std::string& component) const {
+    const auto fail = [&](const std::string& what) { throw InputError("TableMotion::from_points", 0, component, what); };
+    if (t.empty() || t.size() != a.size()) fail("needs at least one point, with one acceleration per time");
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      if (!std::isfinite(t[i]) || !std::isfinite(a[i])) fail("point " + std::to_string(i) + " is not finite");
+      if (i > 0 && !(t[i] > t[i - 1]))
+        fail("times must increase strictly: point " + std::to_string(i) + " at " + text(t[i]) + " s follows " +
+             text(t[i - 1]) + " s");
+    }
+  }
+  static std::string text(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+  }
+  // Called every time step: no allocation, a binary search.
+  [[nodiscard]] double value_at(double time) const noexcept {
+    if (t.empty() || !(time >= t.front()) || time > t.back()) return 0.0;  // also catches NaN
+    const auto hi = std::upper_bound(t.begin(), t.end(), time);
+    if (hi == t.end()) return a.back();
+    const std::size_t i = static_cast<std::size_t>(hi - t.begin()) - 1;
+    const double f = (time - t[i]) / (t[i + 1] - t[i]);
+    return a[i] + f * (a[i + 1] - a[i]);
+  }
+  [[nodiscard]] double peak() const noexcept {
+    double p = 0;
+    for (double v : a) p = std::max(p, std::abs(v));
+    return p;
+  }
+  [[nodiscard]] double t_end() const noexcept { return t.empty() ? 0.0 : t.back(); }
+  [[nodiscard]] PiecewiseLinear scaled(double factor) const {
+    PiecewiseLinear p = *this;
+    for (double& v : p.a) v *= factor;
+    return p;
+  }
+};
+
 // Acceleration of the shake table: X always, Y and Z when has_y / has_z (a 1-D table moves in X).
 struct TableMotion {
   Record x, y, z;
   bool has_y = false, has_z = false;
+  // Set by from_points: the components as given (x, y, z then stay empty); `at` reads them.
+  std::vector<PiecewiseLinear> points = {};
 
   [[nodiscard]] static TableMotion one_d(Record x) { return TableMotion{std::move(x), {}, {}, false, false}; }
   [[nodiscard]] static TableMotion three_d(Record x, Record y, Record z) {
     return TableMotion{std::move(x), std::move(y), std::move(z), true, true};
   }
+  // A motion given by points per component (an empty y or z: that component is zero). Throws
+  // InputError if a component's points are not valid (PiecewiseLinear::check).
+  [[nodiscard]] static TableMotion from_points(PiecewiseLinear px, PiecewiseLinear py = {}, PiecewiseLinear pz = {}) {
+    TableMotion m;
+    px.check("x");
+    m.has_y = !py.t.empty();
+    m.has_z = !pz.t.empty();
+    if (m.has_y) py.check("y");
+    if (m.has_z) pz.check("z");
+    m.points = {std::move(px), std::move(py), std::move(pz)};
+    return m;
+  }
 
   [[nodiscard]] Eigen::Vector3d at(double t) const noexcept {
+    if (!points.empty()) return {points[0].value_at(t), points[1].value_at(t), points[2].value_at(t)};
     return Eigen::Vector3d(x.value_at(t), has_y ? y.value_at(t) : 0.0, has_z ? z.value_at(t) : 0.0);
+  }
+  // Largest |acceleration| of each component (m/s^2).
+  [[nodiscard]] Eigen::Vector3d peaks() const noexcept {
+    if (!points.empty()) return {points[0].peak(), points[1].peak(), points[2].peak()};
+    return {x.peak(), has_y ? y.peak() : 0.0, has_z ? z.peak() : 0.0};
   }
   // So a TableMotion can be passed straight to Simulation::set_table_acceleration.
   Eigen::Vector3d operator()(double t) const noexcept { return at(t); }
@@ -101,6 +166,7 @@ struct TableMotion {
   [[nodiscard]] bool is_3d() const noexcept { return has_y || has_z; }
   // Time of the last sample of any component.
   [[nodiscard]] double t_end() const noexcept {
+    if (!points.empty()) return std::max({points[0].t_end(), points[1].t_end(), points[2].t_end()});
     double e = x.t_end();
     if (has_y) e = std::max(e, y.t_end());
     if (has_z) e = std::max(e, z.t_end());
@@ -108,7 +174,9 @@ struct TableMotion {
   }
   // All components multiplied by level (shake-table tests are run at 25 %, 50 %, 100 % ...).
   [[nodiscard]] TableMotion scaled(double level) const {
-    return TableMotion{x.scaled(level), y.scaled(level), z.scaled(level), has_y, has_z};
+    TableMotion m{x.scaled(level), y.scaled(level), z.scaled(level), has_y, has_z};
+    for (const auto& p : points) m.points.push_back(p.scaled(level));
+    return m;
   }
 };
 

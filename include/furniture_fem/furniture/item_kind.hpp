@@ -16,7 +16,8 @@ class ItemKind {
   friend constexpr bool operator==(ItemKind a, ItemKind b) { return a.name_ == b.name_; }
 
   // The built-in kinds (furniture/kinds/), named for code that picks one.
-  static const ItemKind tall_cabinet, separated_cabinets, side_table, desk, office_chair, bookshelf, locker, table;
+  static const ItemKind tall_cabinet, separated_cabinets, side_table, desk, office_chair, bookshelf, locker, table,
+      block;
 
  private:
   std::string_view name_;
@@ -30,6 +31,7 @@ inline constexpr ItemKind ItemKind::office_chair{"office_chair"};
 inline constexpr ItemKind ItemKind::bookshelf{"bookshelf"};
 inline constexpr ItemKind ItemKind::locker{"locker"};
 inline constexpr ItemKind ItemKind::table{"table"};
+inline constexpr ItemKind ItemKind::block{"block"};
 
 inline std::string to_string(ItemKind k) { return std::string(k.name()); }
 

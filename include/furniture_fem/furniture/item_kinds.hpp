@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "item_kind_registry.hpp"
+#include "kinds/block.hpp"
 #include "kinds/bookshelf.hpp"
 #include "kinds/desk.hpp"
 #include "kinds/locker.hpp"
@@ -19,7 +20,7 @@ namespace furniture_fem {
 
 // In the order the docs list them.
 using builtin_item_kinds = ItemKindList<TallCabinetKind, SeparatedCabinetsKind, SideTableKind, DeskKind,
-                                        OfficeChairKind, BookshelfKind, LockerKind, TableKind>;
+                                        OfficeChairKind, BookshelfKind, LockerKind, TableKind, BlockKind>;
 
 // A registry holding the built-in kinds only (the docs table is made from it).
 inline ItemKindRegistry builtin_item_kind_registry() {

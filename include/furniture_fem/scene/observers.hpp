@@ -427,7 +427,7 @@ class SummaryFile : public RunObserver {
         {"energy_imbalance_relative", sum.energy_imbalance},
         {"max_energy_imbalance_relative", sum.max_energy_imbalance},
         {"ground_motion_peak_m_s2",
-         {motion.x.peak(), motion.has_y ? motion.y.peak() : 0.0, motion.has_z ? motion.z.peak() : 0.0}},
+         {motion.peaks().x(), motion.peaks().y(), motion.peaks().z()}},
         {"final_state", detail::final_state_json(sum.items)},
         {"sectional_force_peaks", detail::section_peaks_json(sum.section_peaks)},
         {"eigen_version", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +

@@ -93,8 +93,43 @@ inline ItemSpec parse_item(const json& v, const std::string& path, const std::st
   return item;
 }
 
+// One component of a "points" motion: [[t, a], ...], checked (points_problem) with the point's path.
+inline std::vector<std::pair<double, double>> parse_points(const ObjectReader& r, std::string_view key) {
+  const json& v = r.raw(key);
+  if (!v.is_array()) r.fail(r.path(key), "expected an array of [t, a] points, got " + ObjectReader::describe(v));
+  std::vector<std::pair<double, double>> pts;
+  for (size_t i = 0; i < v.size(); ++i) {
+    const std::string at = index_path(r.path(key), i);
+    const json& p = v[i];
+    if (!p.is_array() || p.size() != 2)
+      r.fail(at, "expected a [t, a] pair (time in s, acceleration in m/s^2), got " + ObjectReader::describe(p));
+    for (size_t k = 0; k < 2; ++k)
+      if (!p[k].is_number()) r.fail(index_path(at, k), "expected a number, got " + ObjectReader::describe(p[k]));
+    pts.emplace_back(p[0].get<double>(), p[1].get<double>());
+  }
+  if (const auto problem = points_problem(pts, r.path(key))) r.fail(problem->first, problem->second);
+  return pts;
+}
+
+// source "points": the table acceleration as given, scaled by level; nothing else applies to it.
+inline void parse_points_motion(const ObjectReader& r, GroundMotionSpec& g) {
+  for (auto key : {"dimensions", "lowpass_hz", "window", "seed", "pga", "duration", "format", "files", "units", "dt"})
+    if (r.has(key))
+      r.fail(r.path(key), "not used with source \"points\" (the points are the table acceleration as given: no "
+                          "filter, no window; the components are the keys x, y, z)");
+  r.allow_only({"source", "level", "x", "y", "z"});
+  g.level = r.number("level", g.level);
+  r.non_negative("level");
+  if (!r.has("x")) r.fail(r.path("x"), "required with source \"points\": [[t, a], ...] (s, m/s^2)");
+  g.points_x = parse_points(r, "x");
+  if (r.has("y")) g.points_y = parse_points(r, "y");
+  if (r.has("z")) g.points_z = parse_points(r, "z");
+  g.dimensions = r.has("y") || r.has("z") ? MotionDimensions::three_d : MotionDimensions::one_d;
+}
+
 inline void parse_ground_motion(const ObjectReader& r, GroundMotionSpec& g) {
   g.source = r.enumeration("source", source_names, MotionSource::synthetic, "ground motion source");
+  if (g.source == MotionSource::points) return parse_points_motion(r, g);
   const bool synthetic = g.source == MotionSource::synthetic;
   const std::vector<std::string_view> common{"source", "level", "dimensions", "lowpass_hz", "window"};
   const std::vector<std::string_view> only_synthetic{"seed", "pga", "duration"};
@@ -102,6 +137,8 @@ inline void parse_ground_motion(const ObjectReader& r, GroundMotionSpec& g) {
   for (auto key : synthetic ? only_file : only_synthetic)
     if (r.has(key))
       r.fail(r.path(key), std::string("only used with source \"") + (synthetic ? "file" : "synthetic") + "\"");
+  for (auto key : {"x", "y", "z"})
+    if (r.has(key)) r.fail(r.path(key), "only used with source \"points\"");
   std::vector<std::string_view> allowed = common;
   for (auto key : synthetic ? only_synthetic : only_file) allowed.push_back(key);
   r.allow_only(allowed);

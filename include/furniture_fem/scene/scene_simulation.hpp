@@ -64,6 +64,17 @@ inline Record process_record(Record r, const GroundMotionSpec& g) {
 inline TableMotion scene_table_motion(const SceneSpec& s) {
   const auto& g = s.ground_motion;
   const bool three_d = g.dimensions == MotionDimensions::three_d;
+  if (g.source == MotionSource::points) {
+    const auto component = [](const std::vector<std::pair<double, double>>& pts) {
+      PiecewiseLinear p;
+      for (const auto& [t, a] : pts) {
+        p.t.push_back(t);
+        p.a.push_back(a);
+      }
+      return p;
+    };
+    return TableMotion::from_points(component(g.points_x), component(g.points_y), component(g.points_z)).scaled(g.level);
+  }
   if (g.source == MotionSource::synthetic) {
     TableMotion m = default_table_motion(g.seed);
     // Scale so the X component's peak is the requested PGA; Y and Z keep their ratios to X.

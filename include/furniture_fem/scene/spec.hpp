@@ -8,6 +8,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../core/model.hpp"
@@ -69,7 +70,7 @@ struct ItemSpec {
   ItemParams params;
 };
 
-enum class MotionSource { synthetic, file };
+enum class MotionSource { synthetic, file, points };
 enum class RecordFormat { at2, knet, jma_csv, columns };
 enum class MotionDimensions { one_d, three_d };
 enum class AccelerationUnits { g, gal, m_per_s2 };
@@ -85,6 +86,9 @@ struct GroundMotionSpec {
   std::string file_x, file_y, file_z;
   std::optional<AccelerationUnits> units;  // none: the format's own (AT2: g, K-NET and JMA: gal)
   std::optional<double> dt;                // s, for "columns" files without a time column
+  // points: the table acceleration per component as (t s, a m/s^2) points, linear in between and zero
+  // outside; x required, y and z optional (empty: zero). Scaled by `level`; no filter, no window.
+  std::vector<std::pair<double, double>> points_x, points_y, points_z;
   // both
   double level = 1.0;                      // scale of the record (0.5 and 1.0 in the paper)
   MotionDimensions dimensions = MotionDimensions::one_d;

@@ -1,5 +1,6 @@
 #pragma once
 // furniture_fem/scene/validation.hpp: validate(), what reading a scene alone cannot check, before a run.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -129,6 +130,13 @@ inline void validate(const SceneSpec& s) {
         fail(std::string("ground_motion.files.") + key, "record file not found: \"" + s.resolve(*file) + "\"");
     }
   }
+  if (g.source == MotionSource::points) {
+    if (const auto problem = detail::points_problem(g.points_x, "ground_motion.x")) fail(problem->first, problem->second);
+    for (auto [key, pts] : {std::pair{"y", &g.points_y}, std::pair{"z", &g.points_z}})
+      if (!pts->empty())
+        if (const auto problem = detail::points_problem(*pts, std::string("ground_motion.") + key))
+          fail(problem->first, problem->second);
+  }
   if (g.window_end && *g.window_end <= g.window_start)
     fail("ground_motion.window.end", "must be later than window.start (" + detail::fmt(g.window_start) + " s)");
   for (size_t i = 0; i < s.obstacles.size(); ++i)
@@ -167,6 +175,10 @@ inline void validate(const SceneSpec& s) {
     const std::string path = "outputs.sectional_forces[" + std::to_string(k) + "]";
     const auto it = bodies.find(f.item);
     if (it == bodies.end()) fail(path + ".item", "\"" + f.item + "\" is not one of: " + body_names());
+    const auto spec = std::find_if(s.items.begin(), s.items.end(), [&](const ItemSpec& i) { return i.name == f.item; });
+    if (spec != s.items.end() && spec->fidelity == Fidelity::automatic && it->second.fidelity == Fidelity::rigid)
+      fail(path + ".item", "item \"" + f.item + "\" is rigid only (kind \"" + to_string(spec->kind) +
+                               "\"): fidelity \"auto\" cannot model it flexible for its sectional forces");
     const int member = find_member(scratch, it->second.body, f.member);
     if (member < 0) fail(path + ".member", "item \"" + f.item + "\" has no member \"" + f.member + "\"");
     if (f.element >= scratch.member(member).element_count)

@@ -18,6 +18,37 @@
 
 namespace furniture_fem {
 
+namespace detail {
+// The ground motion as the reader takes it: a "points" motion has only its level and points.
+inline nlohmann::json ground_motion_json(const GroundMotionSpec& g) {
+  using nlohmann::json;
+  json gm = {{"source", enum_name(source_names, g.source)}, {"level", g.level}};
+  if (g.source == MotionSource::points) {
+    gm["x"] = points_to_json(g.points_x);
+    if (!g.points_y.empty()) gm["y"] = points_to_json(g.points_y);
+    if (!g.points_z.empty()) gm["z"] = points_to_json(g.points_z);
+    return gm;
+  }
+  gm["dimensions"] = enum_name(dimension_names, g.dimensions);
+  gm["lowpass_hz"] = g.lowpass_hz;
+  gm["window"] = {{"start", g.window_start}};
+  if (g.window_end) gm["window"]["end"] = *g.window_end;
+  if (g.source == MotionSource::synthetic) {
+    gm["seed"] = g.seed;
+    gm["pga"] = g.pga;
+    gm["duration"] = g.synthetic_duration;
+  } else {
+    gm["format"] = enum_name(format_names, g.format);
+    gm["files"] = {{"x", g.file_x}};
+    if (!g.file_y.empty()) gm["files"]["y"] = g.file_y;
+    if (!g.file_z.empty()) gm["files"]["z"] = g.file_z;
+    if (g.units) gm["units"] = enum_name(unit_names, *g.units);
+    if (g.dt) gm["dt"] = *g.dt;
+  }
+  return gm;
+}
+}  // namespace detail
+
 // The scene as JSON, every value written out: parse_scene_json(to_json(s)) gives s back, and
 // to_json of that gives the same JSON.
 inline nlohmann::json to_json(const SceneSpec& s) {
@@ -62,26 +93,7 @@ inline nlohmann::json to_json(const SceneSpec& s) {
     if (!params.empty()) item["params"] = params;
     j["items"].push_back(item);
   }
-  const auto& g = s.ground_motion;
-  json gm = {{"source", enum_name(detail::source_names, g.source)},
-             {"level", g.level},
-             {"dimensions", enum_name(detail::dimension_names, g.dimensions)},
-             {"lowpass_hz", g.lowpass_hz}};
-  gm["window"] = {{"start", g.window_start}};
-  if (g.window_end) gm["window"]["end"] = *g.window_end;
-  if (g.source == MotionSource::synthetic) {
-    gm["seed"] = g.seed;
-    gm["pga"] = g.pga;
-    gm["duration"] = g.synthetic_duration;
-  } else {
-    gm["format"] = enum_name(detail::format_names, g.format);
-    gm["files"] = {{"x", g.file_x}};
-    if (!g.file_y.empty()) gm["files"]["y"] = g.file_y;
-    if (!g.file_z.empty()) gm["files"]["z"] = g.file_z;
-    if (g.units) gm["units"] = enum_name(detail::unit_names, *g.units);
-    if (g.dt) gm["dt"] = *g.dt;
-  }
-  j["ground_motion"] = gm;
+  j["ground_motion"] = detail::ground_motion_json(s.ground_motion);
   json contact = {{"law", enum_name(detail::law_names, s.contact.law)},
                   {"implicit", enum_name(detail::implicit_contact_names, s.contact.implicit)},
                   {"velocity_regularisation", s.contact.velocity_regularisation}};

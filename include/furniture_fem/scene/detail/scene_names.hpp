@@ -5,7 +5,11 @@
 #error "furniture_fem/scene/detail/scene_names.hpp is internal: include <furniture_fem/scene/scene.hpp>"
 #endif
 #include <array>
+#include <cmath>
+#include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 #include <string_view>
 
 #include "../spec.hpp"
@@ -15,7 +19,8 @@ namespace furniture_fem::detail {
 
 inline constexpr EnumNames<Fidelity, 4> fidelity_names{
     {{Fidelity::full, "full"}, {Fidelity::coarse, "coarse"}, {Fidelity::rigid, "rigid"}, {Fidelity::automatic, "auto"}}};
-inline constexpr EnumNames<MotionSource, 2> source_names{{{MotionSource::synthetic, "synthetic"}, {MotionSource::file, "file"}}};
+inline constexpr EnumNames<MotionSource, 3> source_names{
+    {{MotionSource::synthetic, "synthetic"}, {MotionSource::file, "file"}, {MotionSource::points, "points"}}};
 inline constexpr EnumNames<RecordFormat, 4> format_names{{{RecordFormat::at2, "at2"},
                                                           {RecordFormat::knet, "knet"},
                                                           {RecordFormat::jma_csv, "jma_csv"},
@@ -65,6 +70,30 @@ inline void read_range(const ObjectReader& r, std::string_view key, double lo, d
   const double v = r.raw(key).get<double>();
   r.require((lo_exclusive ? v > lo : v >= lo) && v <= hi, key,
             std::string("must lie in ") + (lo_exclusive ? "(" : "[") + fmt(lo) + ", " + fmt(hi) + "]");
+}
+
+// What is wrong with a "points" component (ground_motion.x, .y, .z), as (key path, message), or
+// nothing: at least one point, finite values, times strictly increasing. Shared by the reader and
+// validate() (a SceneSpec made in code).
+inline std::optional<std::pair<std::string, std::string>> points_problem(const std::vector<std::pair<double, double>>& pts,
+                                                                         const std::string& path) {
+  if (pts.empty()) return std::pair{path, std::string("needs at least one [t, a] point")};
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const std::string at = index_path(path, i);
+    if (!std::isfinite(pts[i].first)) return std::pair{at + "[0]", "expected a finite time (got " + fmt(pts[i].first) + ")"};
+    if (!std::isfinite(pts[i].second))
+      return std::pair{at + "[1]", "expected a finite acceleration (got " + fmt(pts[i].second) + ")"};
+    if (i > 0 && !(pts[i].first > pts[i - 1].first))
+      return std::pair{at + "[0]", "times must increase strictly: " + fmt(pts[i].first) + " s follows " +
+                                       fmt(pts[i - 1].first) + " s"};
+  }
+  return std::nullopt;
+}
+
+inline json points_to_json(const std::vector<std::pair<double, double>>& pts) {
+  json j = json::array();
+  for (const auto& [t, a] : pts) j.push_back(json::array({t, a}));
+  return j;
 }
 
 inline json overrides_to_json(const ContactOverrides& o) {

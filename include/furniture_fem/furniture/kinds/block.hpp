@@ -1,0 +1,147 @@
+#pragma once
+// furniture_fem/furniture/kinds/block.hpp: the kind "block" (build_block): a solid uniform box, rigid
+// only, for scenes whose answer is known in closed form (a block sliding or resting on the table).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "generic_box.hpp"
+
+namespace furniture_fem {
+
+namespace detail {
+
+// Outer width of the block's edge tubes: their half width is the floor contact distance L, so the
+// bottom edges' centre lines sit L above the base (floor-contact onset, as the other builders).
+inline constexpr double block_edge_width = 0.010;
+// Share of the block's mass on its frame (edges and spokes): the rest is on the hub, which then
+// carries all the inertia the frame lacks (a larger share could exceed the solid's inertia).
+inline constexpr double block_frame_mass_share = 0.01;
+
+// Why a block cannot be built with these options, or nothing. A block is a rigid body: its frame is
+// contact geometry, not a structure, so finite-element fidelities and panel options do not apply.
+inline std::string block_option_problem(const BuildOptions& o) {
+  if (o.fidelity == Fidelity::full || o.fidelity == Fidelity::coarse)
+    return "fidelity \"" + to_string(o.fidelity) + "\" is not available: a block is modelled rigid (use \"rigid\" or "
+           "\"auto\")";
+  if (!o.mass_kg) return "mass_kg is required (the block's mass, kg)";
+  if (o.cog_d1) return "cog_d1 does not apply: a block's centre of gravity lies on its vertical axis (cog_h sets its height)";
+  if (o.panel_spacing || o.grid_scale != 1.0) return "panel_spacing and grid_scale do not apply: a block has no panels";
+  return {};
+}
+
+// Height of the hub (item frame) that puts the body's centre of gravity at h: the frame's edges
+// (mass m_e at H/2) and the spokes from the hub to the bottom corners (mass mu s each, at mid length)
+// move it; solved by fixed-point iteration (the frame is light: it converges in a few steps).
+inline double block_hub_height(double M, double h, double H, double m_e, double mu, double half_diag2, double c) {
+  double z = h;
+  for (int k = 0; k < 50; ++k) {
+    const double m_s = 4 * mu * std::sqrt(half_diag2 + (z - c) * (z - c));
+    z = (M * h - m_e * 0.5 * H - m_s * 0.5 * c) / (M - m_e - 0.5 * m_s);
+  }
+  return z;
+}
+
+}  // namespace detail
+
+// A solid uniform box W x D x H of mass mass_kg (required), its centre of gravity on its vertical axis at
+// cog_h (default H/2), to be solved as a rigid body. Modelled as a light frame of its 12 edges (10 mm
+// tubes whose centre lines sit 5 mm inside the faces: the contact geometry) with 4 spokes from a hub
+// node to the bottom corners; the frame carries 1 % of the mass, the hub the rest and the principal
+// inertia that makes the body's inertia tensor about its centre of gravity the solid box's,
+// M/12 diag(D^2 + H^2, W^2 + H^2, W^2 + D^2) in the item's axes. Marker "cog": the hub.
+inline ItemInfo build_block(Model& model, const Placement& placement, double W, double D, double H,
+                            const BuildOptions& opts = {}) {
+  const std::string name = detail::name_or(opts, "block");
+  const std::string who = "block '" + name + "'";
+  detail::check_options(opts, who);
+  detail::check_size(W, D, H, who);
+  if (const std::string why = detail::block_option_problem(opts); !why.empty()) throw ModelError(who + ": " + why);
+  const double M = *opts.mass_kg, c = 0.5 * detail::block_edge_width;
+  const double h = opts.cog_h.value_or(0.5 * H);
+  if (!(h >= c && h <= H - c))
+    throw ModelError(who + ": cog_h must lie within the frame, in [" + detail::fmt(c) + ", " + detail::fmt(H - c) +
+                     "] m (got " + detail::fmt(h) + ")");
+  ItemInfo info;
+  info.name = name;
+  info.kind = ItemKind::block;
+  info.body = model.add_body(name);
+  info.R = placement.rotation();
+  info.position = placement.position();
+  info.size = {W, D, H};
+  info.fidelity = Fidelity::rigid;  // "auto" too: there is nothing else to choose
+
+  // Frame: corners, edges, hub and spokes, with a line mass that gives it its share of the mass.
+  const double x = 0.5 * W - c, y = 0.5 * D - c, z0 = c, z1 = H - c;
+  const double half_diag2 = x * x + y * y, edges = 8 * x + 8 * y + 4 * (z1 - z0);
+  const double mu = detail::block_frame_mass_share * M / (edges + 4 * std::sqrt(half_diag2 + (h - c) * (h - c)));
+  const double z_hub = detail::block_hub_height(M, h, H, mu * edges, mu, half_diag2, c);
+  const auto node = [&](double lx, double ly, double lz) { return model.add_node(info.to_world({lx, ly, lz}), info.body); };
+  const std::array<std::pair<const char*, std::array<double, 2>>, 4> corners{
+      {{"front_left", {-x, -y}}, {"front_right", {x, -y}}, {"back_right", {x, y}}, {"back_left", {-x, y}}}};
+  std::array<int, 4> bottom{}, top{};
+  for (int k = 0; k < 4; ++k) {
+    bottom[k] = node(corners[k].second[0], corners[k].second[1], z0);
+    top[k] = node(corners[k].second[0], corners[k].second[1], z1);
+  }
+  const int hub = node(0, 0, z_hub);
+  const int section = detail::find_or_add_section(
+      model, Section::hollow_rectangle(detail::block_edge_width, detail::block_edge_width, 0.001, "block edge 10x10x1"));
+  const int material = detail::find_or_add_material(model, Material::steel());
+  MemberOptions mo;
+  mo.target_length = opts.effective_element_length();
+  mo.line_mass = mu;
+  for (int k = 0; k < 4; ++k) {
+    const std::string from = corners[k].first, to = corners[(k + 1) % 4].first;
+    model.add_member("bottom/" + from + "-" + to, bottom[k], bottom[(k + 1) % 4], section, material, mo);
+    model.add_member("top/" + from + "-" + to, top[k], top[(k + 1) % 4], section, material, mo);
+    model.add_member("post/" + from, bottom[k], top[k], section, material, mo);
+    model.add_member("spoke/" + from, hub, bottom[k], section, material, mo);
+  }
+
+  // The hub: the rest of the mass, and the inertia the frame and the hub's offset from the centre of
+  // gravity leave to the solid box's (the frame is symmetric about the item's x-z and y-z planes, so
+  // that remainder is diagonal in the item's axes).
+  const Vec3 cog = info.to_world({0, 0, h});
+  const double m_hub = M - model.body_mass(info.body), d = z_hub - h;
+  const Vec3 box(D * D + H * H, W * W + H * H, W * W + D * D);
+  const Mat3 rest = info.R.transpose() * model.body_inertia(info.body, cog) * info.R;
+  const Vec3 J = M / 12.0 * box - rest.diagonal() - m_hub * Vec3(d * d, d * d, 0);
+  for (int i = 0; i < 3; ++i)
+    if (!(J[i] >= 0))
+      throw ModelError(who + ": its frame alone exceeds the solid box's inertia about item axis " +
+                       std::string(1, "xyz"[i]) + " (a block too flat for its edge tubes)");
+  model.add_point_mass(hub, m_hub, J, info.R);
+
+  const int long_axis = W >= D ? 0 : 1;
+  const auto& tall = paper_item(PaperItem::tall_cabinet);
+  info.contact = ItemContact::from_rule(M, opts.mu_static_long.value_or(tall.mu_static_long),
+                                        opts.mu_static_short.value_or(tall.mu_static_short), long_axis);
+  for (int n : model.body(info.body).nodes)
+    if (info.to_local(model.node(n).X).z() <= z0 + detail::wire_tolerance) info.bottom_nodes.push_back(n);
+  info.long_axis_nodes = detail::longest_line_along(model, info, long_axis);
+  info.markers.push_back(Marker{"cog", info.body, hub, Vec3(0, 0, h)});
+  info.calibration.target_mass = M;
+  info.calibration.mass = model.body_mass(info.body);
+  info.calibration.target_cog = Vec3(0, 0, h);
+  info.calibration.cog = info.to_local(model.body_centre_of_gravity(info.body));
+  return info;
+}
+
+struct BlockKind : ItemKindDefaults {
+  static constexpr std::string_view name = "block";
+  static constexpr std::string_view meaning =
+      "solid uniform box, rigid only (fidelity \"rigid\" or \"auto\"): its mass, centre of gravity and inertia "
+      "tensor are the solid's; `mass_kg` required, `cog_h` on its vertical axis (default H/2), no `cog_d1`";
+  static std::vector<ItemParameter> parameters() {
+    const auto& tall = paper_item(PaperItem::tall_cabinet);
+    return generic_box_parameters({0.4, 0.4, 0.4}, tall.mu_static_long, tall.mu_static_short);
+  }
+  static Vec3 size(const ItemValues& v) { return generic_box_size(v); }
+  static std::vector<ItemInfo> build(Model& model, const Placement& at, const ItemValues& v, const BuildOptions& o) {
+    return {build_block(model, at, v["width"], v["depth"], v["height"], with_static_friction(o, v))};
+  }
+};
+
+}  // namespace furniture_fem
