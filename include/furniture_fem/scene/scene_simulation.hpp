@@ -99,10 +99,11 @@ inline TableMotion scene_table_motion(const SceneSpec& s) {
 
 // The `stiff` law's parameters for one body: a linear spring per resting node (those at the body's
 // lowest level) stiff enough that the item's weight, shared by them, presses them 25 um in (0.1 mm
-// when one node in four carries it all), half-critical damping of the item's mass on those springs,
+// when one node in four carries it all), critical damping of the item's mass on those springs (an
+// underdamped contact overshoots under a sudden load and lifts a block's heel early),
 // and Coulomb friction on the total normal force that sticks (docs/contact/contact.md, "stiff").
 inline void set_stiff_law(const Model& model, int body, ContactParams& p) {
-  constexpr double resting_penetration = 2.5e-5, damping_ratio = 0.5;
+  constexpr double resting_penetration = 2.5e-5, damping_ratio = 1.0;
   double z_min = std::numeric_limits<double>::infinity();
   for (int n : model.body(body).nodes) z_min = std::min(z_min, model.node(n).X.z());
   int resting = 0;
