@@ -146,12 +146,15 @@ class RoomContact {
 
   // Floor and wall forces again at the end state of a carried-over step: their forces of the last
   // evaluation are taken out of f and the new ones put in; the history to commit is the new one.
+  // Bodies whose contact is explicit keep their predictor evaluation (forces, history, reported pairs).
   void end_of_step(const ContactView& view, Eigen::VectorXd& f) {
-    if (!implicit) return;
+    if (!implicit || plane_applied_.empty()) return;
     for (const auto& [n, force] : plane_applied_) f.template segment<3>(6 * n) -= force;
-    std::erase_if(pair_forces_, [](const PairForce& pf) { return pf.body_b == floor_id || pf.body_b == wall_id; });
+    std::erase_if(pair_forces_, [&](const PairForce& pf) {
+      return (pf.body_b == floor_id || pf.body_b == wall_id) && bodies_[pf.body_a].implicit;
+    });
     active_ -= static_cast<int>(plane_applied_.size());
-    plane_contacts(view, f);
+    plane_contacts(view, f, true);
   }
 
   void commit() {
@@ -171,12 +174,14 @@ class RoomContact {
   Law& law() { return law_; }
 
  private:
-  // Nodes against planes (floor, walls): forces into f, and (implicit) their tangents.
-  void plane_contacts(const ContactView& view, Eigen::VectorXd& f) {
+  // Nodes against planes (floor, walls): forces into f, and (implicit) their tangents; only the
+  // implicit bodies' nodes when only_implicit.
+  void plane_contacts(const ContactView& view, Eigen::VectorXd& f, bool only_implicit = false) {
     const Model& model = view.model;
     tangents_.clear();
     plane_applied_.clear();
     for (int n = 0; n < model.num_nodes(); ++n) {
+      if (only_implicit && !bodies_[model.node(n).body].implicit) continue;
       const Vec3& x = view.x[n];
       const int body = model.node(n).body;
       for (size_t p = 0; p < planes_.size(); ++p) {
