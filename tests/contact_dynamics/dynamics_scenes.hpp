@@ -6,6 +6,7 @@
 // narrowest member (RoomContact), 25 mm for the 50 x 30 tube, so a box whose bottom centre lines sit
 // at z = 25 mm just touches the floor (penetration ratio g = 0).
 #include <furniture_fem/contact/room_contact.hpp>
+#include <furniture_fem/contact/stiff_contact.hpp>
 #include <furniture_fem/core/simulation.hpp>
 
 #include <algorithm>
@@ -53,6 +54,7 @@ struct Box {
   std::vector<int> corners; // the 8 corners: bottom 4 then top 4
   double mass = 0;
   Vec3 cog = Vec3::Zero();
+  const Model* model = nullptr;  // the model the box is in
 };
 
 inline Box add_box(Model& m, const std::string& name, int section, int material, const BoxSpec& s) {
@@ -101,6 +103,7 @@ inline Box add_box(Model& m, const std::string& name, int section, int material,
   }
   b.mass = m.body_mass(b.body);
   b.cog = m.body_centre_of_gravity(b.body);
+  b.model = &m;
   return b;
 }
 

@@ -96,6 +96,21 @@ struct ContactParams {
     p.validate();
     return p;
   }
+
+  // The `stiff` rule: a linear spring per resting node that sinks resting_penetration (2.5 um) under
+  // its share of the weight, damped at damping_ratio for that share (k_lin, c_lin; at least critical,
+  // contact/stiff_contact.hpp raises it for tall items), with the same force at the same depth for
+  // Hunt-Crossley (k_hc, hc_damping 0.5 s/m). Why 2.5 um: with 25 um a block under a held acceleration
+  // tips 1.5 % below g b/h, its toe sinking under the whole weight (measured,
+  // docs/contact/verification_contact.md); at 2.5 um it holds to 0.99 g b/h, suddenly applied.
+  static constexpr double stiff_resting_penetration = 2.5e-6;  // m
+  void set_stiff(double mass, int resting_nodes, double damping_ratio = 1.0) {
+    const double per_node = mass / std::max(resting_nodes, 1);
+    k_lin = per_node * newtons_per_kgf / stiff_resting_penetration;  // newtons_per_kgf: standard gravity
+    c_lin = 2 * damping_ratio * std::sqrt(k_lin * per_node);
+    k_hc = k_lin / std::sqrt(stiff_resting_penetration);
+    hc_damping = 0.5;
+  }
 };
 
 // The paper's dynamic friction rule: 80% of the measured static coefficient.
@@ -195,6 +210,19 @@ inline Vec3 in_tangent_plane(const Vec3& e, const Vec3& n) {
   return in_plane > 1e-12 * len ? Vec3(t * (len / in_plane)) : Vec3::Zero();
 }
 
+// The stick spring that lets Coulomb friction hold still: k_t = mu N / stick_length (the cone is
+// reached after stick_length of elastic slip), with critical damping for the mass it carries, N / g:
+// c_t = 2 sqrt(k_t N / g). Undamped, a suddenly applied load overshoots to twice its value in the spring
+// and tips a block at 0.98 g b/h (measured, docs/contact/verification_contact.md).
+struct StickSpring {
+  double k_t, c_t;
+};
+inline StickSpring stick_spring(double N, double mu, double stick_length) {
+  constexpr double g = 9.80665;
+  const double k_t = mu * N / stick_length;
+  return {k_t, 2 * std::sqrt(std::max(0.0, k_t * N / g))};
+}
+
 // Coulomb friction by return mapping, as in elastoplasticity (Wriggers, Computational Contact
 // Mechanics, ch. 5): a stick spring k_t (and dashpot c_t) predicts the force, e* = e + v_t dt,
 // F* = -k_t e* - c_t v_t; inside the cone |F*| <= mu N it sticks (F = F*), outside it slips on the cone
@@ -223,6 +251,15 @@ TangentialForce coulomb_return_map(const ContactKinematics& k, double N, double 
   state.elongation = k_t > 0 ? Vec3(-f / k_t) : Vec3::Zero();  // the dashpot's share is not stored
   state.sticking = false;
   return {f, false, (limit / f_norm) * c_stick * P};
+}
+
+// Coulomb friction that sticks, on the stick spring of a law without its own (mu_max: the largest
+// coefficient the law uses).
+template <class MuOf>
+TangentialForce sticking_coulomb(const ContactKinematics& k, double N, double mu_max, double stick_length,
+                                 const Vec3& v_t, ContactState& state, MuOf&& mu_of) {
+  const StickSpring s = stick_spring(N, mu_max, stick_length);
+  return coulomb_return_map(k, N, s.k_t, s.c_t, v_t, state, mu_of);
 }
 }  // namespace detail
 
@@ -320,8 +357,7 @@ struct PaperSignFriction {
                         ContactState& state) const {
     const double N = detail::friction_normal_force(nf, normal);
     if (p.stick_length > 0)
-      return detail::coulomb_return_map(k, N, p.mu * N / p.stick_length, 0.0, v_t, state,
-                                        [&](const Vec3&) { return p.mu; });
+      return detail::sticking_coulomb(k, N, p.mu, p.stick_length, v_t, state, [&](const Vec3&) { return p.mu; });
     state.elongation.setZero();
     state.sticking = v_t.norm() < p.v_reg;
     return {-p.mu * N * detail::regularised_direction(v_t, p.v_reg, regularisation), state.sticking,
@@ -359,8 +395,8 @@ struct AnisotropicFloor {
                         ContactState& state) const {
     const double N = detail::friction_normal_force(nf, normal);
     if (p.stick_length > 0)
-      return detail::coulomb_return_map(k, N, std::max(p.mu_long, p.mu_short) * N / p.stick_length, 0.0, v_t, state,
-                                        [&](const Vec3& d) { return mu_along(k, p, d); });
+      return detail::sticking_coulomb(k, N, std::max(p.mu_long, p.mu_short), p.stick_length, v_t, state,
+                                      [&](const Vec3& d) { return mu_along(k, p, d); });
     state.elongation.setZero();
     state.sticking = v_t.norm() < p.v_reg;
     const double mu = mu_along(k, p, v_t);
@@ -378,8 +414,7 @@ struct RegularisedCoulomb {
                         ContactState& state) const {
     const double N = detail::friction_normal_force(nf, normal);
     if (p.stick_length > 0)
-      return detail::coulomb_return_map(k, N, p.mu * N / p.stick_length, 0.0, v_t, state,
-                                        [&](const Vec3&) { return p.mu; });
+      return detail::sticking_coulomb(k, N, p.mu, p.stick_length, v_t, state, [&](const Vec3&) { return p.mu; });
     const double speed2 = v_t.squaredNorm();
     state.elongation.setZero();
     state.sticking = speed2 < p.v_reg * p.v_reg;

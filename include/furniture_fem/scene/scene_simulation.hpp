@@ -20,6 +20,7 @@
 
 #include "../excitation/excitation.hpp"
 #include "../contact/room_contact.hpp"
+#include "../contact/stiff_contact.hpp"
 #include "scene.hpp"
 #include "../core/simulation.hpp"
 
@@ -97,22 +98,6 @@ inline TableMotion scene_table_motion(const SceneSpec& s) {
   return TableMotion::three_d(std::move(x), std::move(y), std::move(z));
 }
 
-// The `stiff` law's parameters for one body: a linear spring per resting node (those at the body's
-// lowest level) stiff enough that the item's weight, shared by them, presses them 25 um in (0.1 mm
-// when one node in four carries it all), critical damping of the item's mass on those springs (an
-// underdamped contact overshoots under a sudden load and lifts a block's heel early),
-// and Coulomb friction on the total normal force that sticks (docs/contact/contact.md, "stiff").
-inline void set_stiff_law(const Model& model, int body, ContactParams& p) {
-  constexpr double resting_penetration = 2.5e-5, damping_ratio = 1.0;
-  double z_min = std::numeric_limits<double>::infinity();
-  for (int n : model.body(body).nodes) z_min = std::min(z_min, model.node(n).X.z());
-  int resting = 0;
-  for (int n : model.body(body).nodes) resting += model.node(n).X.z() <= z_min + 1e-3;
-  const double mass = model.body_mass(body), per_node = mass / std::max(resting, 1);
-  p.k_lin = per_node * 9.80665 / resting_penetration;
-  p.c_lin = 2 * damping_ratio * std::sqrt(p.k_lin * per_node);
-}
-
 // Whether a scene models an item as a rigid body: `rigid`, or `auto` when no sectional force of it is asked for.
 inline bool item_is_rigid(const SceneSpec& s, const ItemInfo& item) {
   if (item.fidelity == Fidelity::rigid) return true;
@@ -160,7 +145,7 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
     base.k_hc = base.k_lin / std::sqrt(0.025);
     base.hc_damping = 0.5;
     base.k_t = base.k_lin;
-    if (s.contact.law == ContactLawKind::stiff) set_stiff_law(model, it.body, base);
+    if (s.contact.law == ContactLawKind::stiff) set_stiff_contact(model, it.body, base);
     bc.floor = base;
     bc.floor.mu = c.mu_floor_long;
     bc.floor.mu_long = c.mu_floor_long;
