@@ -112,6 +112,9 @@ TEST_CASE("the paper's law: equations 1-4 on a hand-computed case", "[contact][l
   const double alpha = 43.6 * g0, Dc = 1.2 * alpha, g = 0.1;
   PaperLaw law;
   CHECK_FALSE(law.clamp_tensile);  // the paper's preset lets F_N pull in the release phase
+  // So does every law with the paper's normal response: clamped, its sign damping chatters at rest.
+  CHECK_FALSE(StickSlipLaw{}.clamp_tensile);
+  CHECK_FALSE(PaperAnisotropicFloorLaw{}.clamp_tensile);
   ContactState st;
 
   SECTION("indent phase") {

@@ -486,9 +486,11 @@ constexpr bool is_paper_part = requires { requires P::paper_equation; };
 // zero when l > L (the state is then reset: a separated contact forgets its spring).
 //
 // clamp_tensile: whether the total normal force may pull. The paper's F_N simply opposes v_N, so in
-// the release phase with Dc = 1.2 alpha the total is alpha g - 1.2 alpha g < 0: the exact paper
-// preset keeps that (clamp_tensile defaults to false when all three parts are the paper's), every
-// other combination defaults to true (contacts push, never glue).
+// the release phase with Dc = 1.2 alpha the total is alpha g - 1.2 alpha g < 0: a law with the paper's
+// normal and damping parts keeps that (clamp_tensile defaults to false; any friction), every other
+// combination defaults to true (contacts push, never glue). Clamped, the paper's sign damping
+// (Dc > alpha) lets a resting node go free in every step it rises and pushes it back in the next:
+// StickSlipLaw, clamped until 2026-11, kept 3 to 13 mm/s of such chatter at rest.
 template <class Normal, class Damping, class Friction>
 class ContactLaw {
   static_assert(NormalForcePolicy<Normal>,
@@ -507,8 +509,9 @@ class ContactLaw {
   using friction_part_type = Friction;
   static constexpr bool paper_equations =
       detail::is_paper_part<Normal> && detail::is_paper_part<Damping> && detail::is_paper_part<Friction>;
+  static constexpr bool paper_normal_response = detail::is_paper_part<Normal> && detail::is_paper_part<Damping>;
 
-  bool clamp_tensile = !paper_equations;
+  bool clamp_tensile = !paper_normal_response;
 
   ContactLaw() = default;
   explicit ContactLaw(bool clamp_tensile_forces, Normal normal = {}, Damping damping = {}, Friction friction = {})
