@@ -11,6 +11,8 @@
 //    distance of the closest points and L the mean member width; candidate pairs come from the CGAL
 //    broad phase (contact.hpp), re-run whenever a node has moved more than half the boxes' margin
 //  - element against rigid triangle-mesh obstacles.
+// A rigid body (set_rigid, which Simulation::set_rigid calls) is tested against the planes with the
+// vertices of its nodes' convex hull only: its support points (a box's eight corners), not its mesh.
 // Each body carries its own parameters (alpha, Dc, mu on the floor along its longer and shorter edge,
 // mu against walls); between two items the paper's mu between furniture applies, with alpha and Dc
 // the mean of the two items' values (the paper leaves this open; docs/contact/contact.md).
@@ -25,6 +27,10 @@
 #include "cgal_adapter.hpp"
 #include "contact_laws.hpp"
 #include "../core/simulation.hpp"
+
+#define FURNITURE_FEM_CONTACT_INTERNAL
+#include "detail/hull_vertices.hpp"
+#undef FURNITURE_FEM_CONTACT_INTERNAL
 
 namespace furniture_fem {
 
@@ -105,6 +111,8 @@ class RoomContact {
     caster_.assign(model.num_nodes(), 0);
     for (const auto& b : bodies_)
       for (int n : b.caster_nodes) caster_.at(n) = 1;
+    plane_node_.assign(model.num_nodes(), 1);
+    select_plane_nodes();
     node_state_.assign(static_cast<size_t>(model.num_nodes()) * planes_.size(), ContactState{});
     node_trial_ = node_state_;
     // Item-item pairs keep a history when the law has one, or when any friction sticks by return mapping.
@@ -112,6 +120,22 @@ class RoomContact {
     for (const auto& b : bodies_) pair_history_ = pair_history_ || b.item.stick_length > 0;
   }
   void add_obstacle(MeshObstacle obstacle) { obstacles_.push_back(std::move(obstacle)); }
+
+  // A body whose nodes keep their places relative to each other (Simulation::set_rigid calls this):
+  // only the vertices of its nodes' convex hull are tested against the floor and walls. A plane meets
+  // a rigid body first at a hull vertex; the body's weight is shared by its support points instead of
+  // every node at the bottom (docs/contact/contact.md, "Rigid bodies"). rigid = false: every node again.
+  void set_rigid(const Model& model, int body, bool rigid = true) {
+    const auto& nodes = model.body(body).nodes;
+    std::vector<Vec3> X;
+    X.reserve(nodes.size());
+    for (int n : nodes) X.push_back(model.node(n).X);
+    const std::vector<char> keep = rigid ? detail::hull_vertex_flags(X) : std::vector<char>(nodes.size(), 1);
+    for (size_t k = 0; k < nodes.size(); ++k) plane_node_.at(nodes[k]) = keep[k];
+    select_plane_nodes();
+  }
+  // The nodes tested against the floor and walls (all but rigid bodies' inner nodes), ascending.
+  const std::vector<int>& plane_nodes() const { return plane_nodes_; }
 
   // Seconds spent, accumulated over every evaluation: nodes against planes, the broad phase (boxes
   // and candidate pairs, when it re-runs), the narrow phase with the law on the candidates, and
@@ -180,7 +204,7 @@ class RoomContact {
     const Model& model = view.model;
     tangents_.clear();
     plane_applied_.clear();
-    for (int n = 0; n < model.num_nodes(); ++n) {
+    for (int n : plane_nodes_) {
       if (only_implicit && !bodies_[model.node(n).body].implicit) continue;
       const Vec3& x = view.x[n];
       const int body = model.node(n).body;
@@ -221,6 +245,12 @@ class RoomContact {
         }
       }
     }
+  }
+
+  void select_plane_nodes() {
+    plane_nodes_.clear();
+    for (size_t n = 0; n < plane_node_.size(); ++n)
+      if (plane_node_[n]) plane_nodes_.push_back(static_cast<int>(n));
   }
 
   Vec3 long_axis(int body, const ContactView& view) const {
@@ -354,6 +384,8 @@ class RoomContact {
   std::vector<RigidPlane> planes_;
   std::vector<MeshObstacle> obstacles_;
   std::vector<double> half_width_;
+  std::vector<char> plane_node_;  // whether plane_contacts tests the node (a rigid body: its hull vertices)
+  std::vector<int> plane_nodes_;  // those nodes, ascending
   std::vector<char> caster_;
   std::vector<ContactState> node_state_, node_trial_;
   std::unordered_map<long long, ContactState> pair_state_, pair_trial_;

@@ -178,6 +178,8 @@ class Simulation {
           throw ModelError("set_rigid: body '" + model_.body(body).name + "' has supported node " + std::to_string(n) +
                            "; a rigid body must be free");
     systems_[body].rigid = rigid;
+    // The contact may then test a reduced geometry of the body (RoomContact: its hull's nodes).
+    if constexpr (requires { contact_.set_rigid(model_, body, rigid); }) contact_.set_rigid(model_, body, rigid);
   }
   bool is_rigid(int body) const { return systems_.at(body).rigid; }
 
@@ -775,7 +777,14 @@ class Simulation {
 
   template <class F>
   void body_sweep(F&& f) {
-    timed(timings_.bodies, [&] { detail::parallel_for(body_order_, opt_.threads, f); });
+    timed(timings_.bodies, [&] { detail::parallel_for(body_order_, sweep_threads(), f); });
+  }
+
+  // Threads start per sweep (detail/parallel.hpp): a rigid body's share of a sweep is a few
+  // microseconds, less than starting a thread, so a scene without a flexible body sweeps on one.
+  int sweep_threads() const {
+    const bool any_flexible = std::any_of(systems_.begin(), systems_.end(), [](const auto& bs) { return !bs.rigid; });
+    return any_flexible ? opt_.threads : 1;
   }
 
   // Sums (and clears) what the bodies produced since the last call: the timings and the energy ledger
@@ -845,7 +854,11 @@ class Simulation {
   // Newmark's velocity and acceleration from the increment Du, and (positions) the nodes' placement.
   void kinematics_body(int b, bool positions = true) {
     const double dt = opt_.dt;
-    for (int n : systems_[b].nodes) {
+    const auto& bs = systems_[b];
+    // Every node of a rigid body turns by the same increment: one exponential for all of them.
+    const bool same_turn = positions && bs.rigid && !bs.nodes.empty();
+    const Mat3 turn = same_turn ? detail::rotation_exp(Du_.segment<3>(6 * bs.nodes.front() + 3)) : Mat3::Identity();
+    for (int n : bs.nodes) {
       const int i = 6 * n;
       const Vec6 vn = vn_.segment<6>(i), an = an_.segment<6>(i);
       a_.segment<6>(i) = coef_.acceleration<Vec6>(Du_.segment<6>(i), vn, an, dt);
@@ -853,7 +866,7 @@ class Simulation {
       if (!positions) continue;
       u_[n] = u0_[n] + Du_.segment<3>(i);
       x_[n] = model_.node(n).X + u_[n];
-      R_[n] = detail::rotation_exp(Du_.segment<3>(i + 3)) * R0_[n];
+      R_[n] = (same_turn ? turn : detail::rotation_exp(Du_.segment<3>(i + 3))) * R0_[n];
     }
   }
 
@@ -871,8 +884,11 @@ class Simulation {
         s.damping_work -= 0.5 * opt_.mass_damping *
                           du.dot((mass_.segment<6>(i).array() * (vn_.segment<6>(i) + v_.segment<6>(i)).array()).matrix());
     }
-    for (int e : bs.elements) std::swap(committed_[e], trial_[e]);
-    s.shifted += shift_integration_points(b);
+    // A rigid body's elements are never evaluated (no forces, no history): nothing to commit or shift.
+    if (!bs.rigid) {
+      for (int e : bs.elements) std::swap(committed_[e], trial_[e]);
+      s.shifted += shift_integration_points(b);
+    }
     for (int n : bs.nodes) {
       const int i = 6 * n;
       fext0_.segment<6>(i) = fext1_.segment<6>(i);
