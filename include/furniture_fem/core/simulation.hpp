@@ -1180,17 +1180,6 @@ class Simulation {
       }
     }
 
-    // The body's inertia tensor about c (world axes): sum over nodes of m (|r|^2 I - r r^T) + R_n T_n R_n^T,
-    // T_n the node's initial rotary inertia (members' isotropic part, point masses; node_rotary_inertia).
-    static Mat3 rotary_inertia(const Simulation& sim, const detail::BodySystem& bs, const Vec3& c) {
-      Mat3 I = Mat3::Zero();
-      for (int n : bs.nodes) {
-        const Vec3 r = sim.x_[n] - c;
-        I += sim.mass_[6 * n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose()) +
-             sim.node_rotary_inertia(n);
-      }
-      return I;
-    }
 
     // The nodal residual's rotary inertia is the diagonal D_n in world axes (exact for isotropic D_n).
     // For a node with a point inertia on a rigid body, the moment it should have: the turned tensor
@@ -1219,6 +1208,9 @@ class Simulation {
       const Vec3 c = mass_centre(sim, bs);
       Eigen::Matrix<double, 6, 6> A = Eigen::Matrix<double, 6, 6>::Zero();
       Vec6 R6 = Vec6::Zero();
+      // The body's inertia tensor about c (world axes), in the same pass: sum over nodes of
+      // m (|r|^2 I - r r^T) + R_n T_n R_n^T, T_n the node's initial rotary inertia (node_rotary_inertia).
+      Mat3 I = Mat3::Zero();
       for (int n : bs.nodes) {
         const Vec3 r = sim.x_[n] - c;
         const Mat3 S = detail::skew(r);  // dtheta x r = -S dtheta
@@ -1229,9 +1221,10 @@ class Simulation {
         const Vec3 rf = r_nodal.template segment<3>(6 * n), rm = r_nodal.template segment<3>(6 * n + 3);
         R6.template head<3>() += rf;
         R6.template tail<3>() += S * rf + rm;
+        I += mass[6 * n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose()) + sim.node_rotary_inertia(n);
       }
       if (!sim.static_) add_contact_terms(sim, bs, c, A);
-      A.template block<3, 3>(3, 3) += mf * rotary_inertia(sim, bs, c);
+      A.template block<3, 3>(3, 3) += mf * I;
       R6.template tail<3>() += anisotropic_inertia_moment(sim, bs);
       const Vec6 dq = A.ldlt().solve(R6);
       bs.rigid_dc += dq.template head<3>();
