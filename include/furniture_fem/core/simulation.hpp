@@ -1180,7 +1180,6 @@ class Simulation {
       }
     }
 
-
     // The nodal residual's rotary inertia is the diagonal D_n in world axes (exact for isotropic D_n).
     // For a node with a point inertia on a rigid body, the moment it should have: the turned tensor
     // I_n = R_n T_n R_n^T (T_n the initial tensor) on the (generalized-alpha) angular acceleration, and
