@@ -130,6 +130,7 @@ class RoomContact {
   // face turned towards a plane each with the penalty of its share of that face's nodes
   // (docs/contact/contact.md, "Rigid bodies"). rigid = false: every node again.
   void set_rigid(const Model& model, int body, bool rigid = true) {
+    if (support_.empty()) return;  // default-constructed: no bodies, nothing to test
     const auto& nodes = model.body(body).nodes;
     support_.at(body) = rigid ? detail::support_geometry(model, nodes) : detail::SupportGeometry{};
     for (int n : nodes) plane_node_[n] = !rigid;
