@@ -165,10 +165,11 @@ class Simulation {
   Contact& contact() { return contact_; }
   const Contact& contact_model() const { return contact_; }
 
-  // Models a body as rigid (6 DOF) with the same nodes, masses and contact geometry: its elements
-  // carry no forces and are not evaluated; its motion is solved in the rigid subspace (Newton on the
-  // body's translation and rotation, the residual reduced from the nodal one). Call before the first
-  // step. "Model only what a scene needs": an item whose internal forces nobody asked for.
+  // Models a body as rigid (6 DOF) with the same nodes and masses: its elements carry no forces and
+  // are not evaluated; its motion is solved in the rigid subspace (Newton on the body's translation and
+  // rotation, the residual reduced from the nodal one). The contact is told (it may reduce the body's
+  // geometry). Call before the first step. "Model only what a scene needs": an item whose internal
+  // forces nobody asked for.
   void set_rigid(int body, bool rigid = true) {
     if (started_) throw ModelError("set_rigid: call before the first step");
     if (body < 0 || body >= model_.num_bodies()) throw ModelError("set_rigid: unknown body " + std::to_string(body));
@@ -1133,8 +1134,8 @@ class Simulation {
     }
   };
 
-  // A rigid body (set_rigid): six DOF, the same nodes, masses and contact geometry; its elements carry
-  // no forces. Newton on the body's translation and rotation, the residual reduced from the nodal one,
+  // A rigid body (set_rigid): six DOF, the same nodes and masses (the contact may reduce its geometry);
+  // its elements carry no forces. Newton on the body's translation and rotation, the residual reduced from the nodal one,
   // the nodes placed exactly on the rigid motion from the start of the step (finite rotation, no drift).
   struct RigidBody {
     // Nothing to assemble: the rigid solve builds its 6 x 6 matrix itself.
