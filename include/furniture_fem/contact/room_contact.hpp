@@ -11,6 +11,10 @@
 //    distance of the closest points and L the mean member width; candidate pairs come from the CGAL
 //    broad phase (contact.hpp), re-run whenever a node has moved more than half the boxes' margin
 //  - element against rigid triangle-mesh obstacles.
+// A rigid body (set_rigid, which Simulation::set_rigid calls) is tested against the planes with the
+// vertices of its nodes' convex hull only, its support points (a box's eight corners), not its mesh:
+// the vertices of the hull face turned towards a plane each stand for an equal share of the nodes on
+// that face, so a body resting on a face is held as with every node (docs/contact/contact.md).
 // Each body carries its own parameters (alpha, Dc, mu on the floor along its longer and shorter edge,
 // mu against walls); between two items the paper's mu between furniture applies, with alpha and Dc
 // the mean of the two items' values (the paper leaves this open; docs/contact/contact.md).
@@ -25,6 +29,10 @@
 #include "cgal_adapter.hpp"
 #include "contact_laws.hpp"
 #include "../core/simulation.hpp"
+
+#define FURNITURE_FEM_CONTACT_INTERNAL
+#include "detail/support_points.hpp"
+#undef FURNITURE_FEM_CONTACT_INTERNAL
 
 namespace furniture_fem {
 
@@ -105,6 +113,10 @@ class RoomContact {
     caster_.assign(model.num_nodes(), 0);
     for (const auto& b : bodies_)
       for (int n : b.caster_nodes) caster_.at(n) = 1;
+    plane_node_.assign(model.num_nodes(), 1);
+    select_plane_nodes();
+    support_.resize(bodies_.size());
+    share_.assign(static_cast<size_t>(model.num_nodes()) * planes_.size(), 1.0);
     node_state_.assign(static_cast<size_t>(model.num_nodes()) * planes_.size(), ContactState{});
     node_trial_ = node_state_;
     // Item-item pairs keep a history when the law has one, or when any friction sticks by return mapping.
@@ -112,6 +124,21 @@ class RoomContact {
     for (const auto& b : bodies_) pair_history_ = pair_history_ || b.item.stick_length > 0;
   }
   void add_obstacle(MeshObstacle obstacle) { obstacles_.push_back(std::move(obstacle)); }
+
+  // A body whose nodes keep their places relative to each other (Simulation::set_rigid calls this):
+  // only the vertices of its nodes' convex hull are tested against the floor and walls, those of the
+  // face turned towards a plane each with the penalty of its share of that face's nodes
+  // (docs/contact/contact.md, "Rigid bodies"). rigid = false: every node again.
+  void set_rigid(const Model& model, int body, bool rigid = true) {
+    if (support_.empty()) return;  // default-constructed: no bodies, nothing to test
+    const auto& nodes = model.body(body).nodes;
+    support_.at(body) = rigid ? detail::support_geometry(model, nodes) : detail::SupportGeometry{};
+    for (int n : nodes) plane_node_[n] = !rigid;
+    for (int n : support_[body].vertices) plane_node_[n] = 1;
+    select_plane_nodes();
+  }
+  // The nodes tested against the floor and walls (all but rigid bodies' inner nodes), ascending.
+  const std::vector<int>& plane_nodes() const { return plane_nodes_; }
 
   // Seconds spent, accumulated over every evaluation: nodes against planes, the broad phase (boxes
   // and candidate pairs, when it re-runs), the narrow phase with the law on the candidates, and
@@ -180,7 +207,8 @@ class RoomContact {
     const Model& model = view.model;
     tangents_.clear();
     plane_applied_.clear();
-    for (int n = 0; n < model.num_nodes(); ++n) {
+    update_support_shares(view);
+    for (int n : plane_nodes_) {
       if (only_implicit && !bodies_[model.node(n).body].implicit) continue;
       const Vec3& x = view.x[n];
       const int body = model.node(n).body;
@@ -203,9 +231,10 @@ class RoomContact {
         if (!pl.is_wall && caster_[n] && bodies_[body].caster_mu >= 0) {
           prm.mu = prm.mu_long = prm.mu_short = bodies_[body].caster_mu;
         }
+        const size_t si = n * planes_.size() + p;
+        if (share_[si] != 1.0) prm = scaled_penalty(prm, share_[si]);
         // Laws with history (stick-slip) start every evaluation from the committed state; commit()
         // keeps the trial of the last evaluation, so Newton iterations do not advance the history.
-        const size_t si = n * planes_.size() + p;
         node_trial_[si] = node_state_[si];
         const ContactForce cf = law_.force(k, prm, node_trial_[si]);
         f.template segment<3>(6 * n) += cf.on_a;
@@ -221,6 +250,32 @@ class RoomContact {
         }
       }
     }
+  }
+
+  // Each rigid body's support points against each plane: those of the hull face turned towards the
+  // plane take that face's share, the others their own node's (a corner the body tips onto).
+  void update_support_shares(const ContactView& view) {
+    const size_t np = planes_.size();
+    for (const auto& sg : support_) {
+      if (sg.faces.empty()) continue;
+      for (size_t p = 0; p < np; ++p) {
+        for (int n : sg.vertices) share_[n * np + p] = 1.0;
+        if (const auto* face = sg.face_towards(view.x, planes_[p].normal))
+          for (int n : face->vertices) share_[n * np + p] = face->share;
+      }
+    }
+  }
+
+  // The parameters of a contact standing for `share` nodes: every force and tangent `share` times one node's.
+  static ContactParams scaled_penalty(ContactParams p, double share) {
+    for (double* f : {&p.alpha, &p.Dc, &p.k_lin, &p.c_lin, &p.k_t, &p.c_t, &p.k_hc}) *f *= share;
+    return p;
+  }
+
+  void select_plane_nodes() {
+    plane_nodes_.clear();
+    for (size_t n = 0; n < plane_node_.size(); ++n)
+      if (plane_node_[n]) plane_nodes_.push_back(static_cast<int>(n));
   }
 
   Vec3 long_axis(int body, const ContactView& view) const {
@@ -354,6 +409,10 @@ class RoomContact {
   std::vector<RigidPlane> planes_;
   std::vector<MeshObstacle> obstacles_;
   std::vector<double> half_width_;
+  std::vector<char> plane_node_;  // whether plane_contacts tests the node (a rigid body: its hull vertices)
+  std::vector<int> plane_nodes_;  // those nodes, ascending
+  std::vector<detail::SupportGeometry> support_;  // per body; empty unless rigid
+  std::vector<double> share_;     // per node and plane: how many nodes the contact stands for
   std::vector<char> caster_;
   std::vector<ContactState> node_state_, node_trial_;
   std::unordered_map<long long, ContactState> pair_state_, pair_trial_;

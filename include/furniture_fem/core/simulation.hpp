@@ -165,10 +165,11 @@ class Simulation {
   Contact& contact() { return contact_; }
   const Contact& contact_model() const { return contact_; }
 
-  // Models a body as rigid (6 DOF) with the same nodes, masses and contact geometry: its elements
-  // carry no forces and are not evaluated; its motion is solved in the rigid subspace (Newton on the
-  // body's translation and rotation, the residual reduced from the nodal one). Call before the first
-  // step. "Model only what a scene needs": an item whose internal forces nobody asked for.
+  // Models a body as rigid (6 DOF) with the same nodes and masses: its elements carry no forces and
+  // are not evaluated; its motion is solved in the rigid subspace (Newton on the body's translation and
+  // rotation, the residual reduced from the nodal one). The contact is told (it may reduce the body's
+  // geometry). Call before the first step. "Model only what a scene needs": an item whose internal
+  // forces nobody asked for.
   void set_rigid(int body, bool rigid = true) {
     if (started_) throw ModelError("set_rigid: call before the first step");
     if (body < 0 || body >= model_.num_bodies()) throw ModelError("set_rigid: unknown body " + std::to_string(body));
@@ -178,6 +179,8 @@ class Simulation {
           throw ModelError("set_rigid: body '" + model_.body(body).name + "' has supported node " + std::to_string(n) +
                            "; a rigid body must be free");
     systems_[body].rigid = rigid;
+    // The contact may then test a reduced geometry of the body (RoomContact: its hull's nodes).
+    if constexpr (requires { contact_.set_rigid(model_, body, rigid); }) contact_.set_rigid(model_, body, rigid);
   }
   bool is_rigid(int body) const { return systems_.at(body).rigid; }
 
@@ -775,7 +778,14 @@ class Simulation {
 
   template <class F>
   void body_sweep(F&& f) {
-    timed(timings_.bodies, [&] { detail::parallel_for(body_order_, opt_.threads, f); });
+    timed(timings_.bodies, [&] { detail::parallel_for(body_order_, sweep_threads(), f); });
+  }
+
+  // Threads start per sweep (detail/parallel.hpp): a rigid body's share of a sweep is a few
+  // microseconds, less than starting a thread, so a scene without a flexible body sweeps on one.
+  int sweep_threads() const {
+    const bool any_flexible = std::any_of(systems_.begin(), systems_.end(), [](const auto& bs) { return !bs.rigid; });
+    return any_flexible ? opt_.threads : 1;
   }
 
   // Sums (and clears) what the bodies produced since the last call: the timings and the energy ledger
@@ -845,7 +855,11 @@ class Simulation {
   // Newmark's velocity and acceleration from the increment Du, and (positions) the nodes' placement.
   void kinematics_body(int b, bool positions = true) {
     const double dt = opt_.dt;
-    for (int n : systems_[b].nodes) {
+    const auto& bs = systems_[b];
+    // Every node of a rigid body turns by the same increment: one exponential for all of them.
+    const bool same_turn = positions && bs.rigid && !bs.nodes.empty();
+    const Mat3 turn = same_turn ? detail::rotation_exp(Du_.segment<3>(6 * bs.nodes.front() + 3)) : Mat3::Identity();
+    for (int n : bs.nodes) {
       const int i = 6 * n;
       const Vec6 vn = vn_.segment<6>(i), an = an_.segment<6>(i);
       a_.segment<6>(i) = coef_.acceleration<Vec6>(Du_.segment<6>(i), vn, an, dt);
@@ -853,7 +867,7 @@ class Simulation {
       if (!positions) continue;
       u_[n] = u0_[n] + Du_.segment<3>(i);
       x_[n] = model_.node(n).X + u_[n];
-      R_[n] = detail::rotation_exp(Du_.segment<3>(i + 3)) * R0_[n];
+      R_[n] = (same_turn ? turn : detail::rotation_exp(Du_.segment<3>(i + 3))) * R0_[n];
     }
   }
 
@@ -871,8 +885,11 @@ class Simulation {
         s.damping_work -= 0.5 * opt_.mass_damping *
                           du.dot((mass_.segment<6>(i).array() * (vn_.segment<6>(i) + v_.segment<6>(i)).array()).matrix());
     }
-    for (int e : bs.elements) std::swap(committed_[e], trial_[e]);
-    s.shifted += shift_integration_points(b);
+    // A rigid body's elements are never evaluated (no forces, no history): nothing to commit or shift.
+    if (!bs.rigid) {
+      for (int e : bs.elements) std::swap(committed_[e], trial_[e]);
+      s.shifted += shift_integration_points(b);
+    }
     for (int n : bs.nodes) {
       const int i = 6 * n;
       fext0_.segment<6>(i) = fext1_.segment<6>(i);
@@ -1117,8 +1134,8 @@ class Simulation {
     }
   };
 
-  // A rigid body (set_rigid): six DOF, the same nodes, masses and contact geometry; its elements carry
-  // no forces. Newton on the body's translation and rotation, the residual reduced from the nodal one,
+  // A rigid body (set_rigid): six DOF, the same nodes and masses (the contact may reduce its geometry);
+  // its elements carry no forces. Newton on the body's translation and rotation, the residual reduced from the nodal one,
   // the nodes placed exactly on the rigid motion from the start of the step (finite rotation, no drift).
   struct RigidBody {
     // Nothing to assemble: the rigid solve builds its 6 x 6 matrix itself.
@@ -1164,18 +1181,6 @@ class Simulation {
       }
     }
 
-    // The body's inertia tensor about c (world axes): sum over nodes of m (|r|^2 I - r r^T) + R_n T_n R_n^T,
-    // T_n the node's initial rotary inertia (members' isotropic part, point masses; node_rotary_inertia).
-    static Mat3 rotary_inertia(const Simulation& sim, const detail::BodySystem& bs, const Vec3& c) {
-      Mat3 I = Mat3::Zero();
-      for (int n : bs.nodes) {
-        const Vec3 r = sim.x_[n] - c;
-        I += sim.mass_[6 * n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose()) +
-             sim.node_rotary_inertia(n);
-      }
-      return I;
-    }
-
     // The nodal residual's rotary inertia is the diagonal D_n in world axes (exact for isotropic D_n).
     // For a node with a point inertia on a rigid body, the moment it should have: the turned tensor
     // I_n = R_n T_n R_n^T (T_n the initial tensor) on the (generalized-alpha) angular acceleration, and
@@ -1203,6 +1208,9 @@ class Simulation {
       const Vec3 c = mass_centre(sim, bs);
       Eigen::Matrix<double, 6, 6> A = Eigen::Matrix<double, 6, 6>::Zero();
       Vec6 R6 = Vec6::Zero();
+      // The body's inertia tensor about c (world axes), in the same pass: sum over nodes of
+      // m (|r|^2 I - r r^T) + R_n T_n R_n^T, T_n the node's initial rotary inertia (node_rotary_inertia).
+      Mat3 I = Mat3::Zero();
       for (int n : bs.nodes) {
         const Vec3 r = sim.x_[n] - c;
         const Mat3 S = detail::skew(r);  // dtheta x r = -S dtheta
@@ -1213,9 +1221,10 @@ class Simulation {
         const Vec3 rf = r_nodal.template segment<3>(6 * n), rm = r_nodal.template segment<3>(6 * n + 3);
         R6.template head<3>() += rf;
         R6.template tail<3>() += S * rf + rm;
+        I += mass[6 * n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose()) + sim.node_rotary_inertia(n);
       }
       if (!sim.static_) add_contact_terms(sim, bs, c, A);
-      A.template block<3, 3>(3, 3) += mf * rotary_inertia(sim, bs, c);
+      A.template block<3, 3>(3, 3) += mf * I;
       R6.template tail<3>() += anisotropic_inertia_moment(sim, bs);
       const Vec6 dq = A.ldlt().solve(R6);
       bs.rigid_dc += dq.template head<3>();

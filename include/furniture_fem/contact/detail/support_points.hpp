@@ -1,0 +1,115 @@
+#pragma once
+// Internal: the reduced contact geometry of a rigid body against planes (docs/contact/contact.md,
+// "Rigid bodies"): the vertices of its nodes' convex hull, and the hull's flat faces, each with the
+// number of the body's nodes lying on it. A plane meets a rigid body first at a hull vertex; when a
+// face lies on the plane, its vertices stand for every node of the face, each with an equal share.
+// Users include furniture_fem/contact/room_contact.hpp, not this file.
+#ifndef FURNITURE_FEM_CONTACT_INTERNAL
+#error "furniture_fem/contact/detail/support_points.hpp is internal: include <furniture_fem/contact/room_contact.hpp>"
+#endif
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/convex_hull_3.h>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "../../core/model.hpp"
+
+namespace furniture_fem::detail {
+
+// A flat face of the hull: three of its vertex nodes in outward order ((x1 - x0) x (x2 - x0) points out
+// of the body), all its vertex nodes, and the share each of them takes when the face rests on a plane.
+struct SupportFace {
+  std::array<int, 3> frame{};
+  std::vector<int> vertices;
+  double share = 1;  // nodes on the face / its vertices
+};
+
+struct SupportGeometry {
+  std::vector<int> vertices;  // hull-vertex nodes, ascending; every node of a degenerate (flat) body
+  std::vector<SupportFace> faces;
+
+  // The face that looks most directly into a plane of unit normal n (positions x of the nodes now).
+  const SupportFace* face_towards(const std::vector<Vec3>& x, const Vec3& n) const {
+    const SupportFace* best = nullptr;
+    double best_cos = -2;
+    for (const auto& f : faces) {
+      const Vec3 out = (x[f.frame[1]] - x[f.frame[0]]).cross(x[f.frame[2]] - x[f.frame[0]]);
+      const double c = -out.dot(n) / out.norm();
+      if (c > best_cos) best_cos = c, best = &f;
+    }
+    return best;
+  }
+};
+
+namespace support {
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+
+inline Vec3 unit_normal(const Model& model, const std::array<int, 3>& t) {
+  const auto X = [&](int i) -> const Vec3& { return model.node(t[i]).X; };
+  return (X(1) - X(0)).cross(X(2) - X(0)).normalized();
+}
+
+// The hull's triangles (as node triples) merged into flat faces by their planes.
+inline void merge_into_faces(const Model& model, const std::array<int, 3>& tri, std::vector<SupportFace>& faces) {
+  constexpr double on_plane = 1e-6;  // m
+  const Vec3 normal = unit_normal(model, tri);
+  const double offset = normal.dot(model.node(tri[0]).X);
+  auto same = std::find_if(faces.begin(), faces.end(), [&](const SupportFace& s) {
+    return unit_normal(model, s.frame).dot(normal) > 1 - 1e-9 &&
+           std::abs(unit_normal(model, s.frame).dot(model.node(s.frame[0]).X) - offset) < on_plane;
+  });
+  if (same == faces.end()) same = faces.insert(faces.end(), SupportFace{tri, {}, 1});
+  for (int n : tri)
+    if (std::find(same->vertices.begin(), same->vertices.end(), n) == same->vertices.end()) same->vertices.push_back(n);
+}
+
+// Each face's share: the body's nodes on its plane (a member's nodes lie on it to round-off) per vertex.
+inline void set_shares(const Model& model, const std::vector<int>& nodes, std::vector<SupportFace>& faces) {
+  constexpr double on_plane = 1e-6;  // m
+  for (auto& f : faces) {
+    const Vec3 normal = unit_normal(model, f.frame);
+    const double offset = normal.dot(model.node(f.frame[0]).X);
+    const auto on_face = std::count_if(nodes.begin(), nodes.end(), [&](int n) {
+      return std::abs(normal.dot(model.node(n).X) - offset) < on_plane;
+    });
+    f.share = double(on_face) / double(f.vertices.size());
+  }
+}
+}  // namespace support
+
+// The hull of a body's nodes at their initial positions (CGAL::convex_hull_3).
+inline SupportGeometry support_geometry(const Model& model, const std::vector<int>& nodes) {
+  using support::Point;
+  SupportGeometry g;
+  std::vector<Point> points;
+  for (int n : nodes) points.emplace_back(model.node(n).X.x(), model.node(n).X.y(), model.node(n).X.z());
+  CGAL::Surface_mesh<Point> hull;
+  if (nodes.size() >= 4) CGAL::convex_hull_3(points.begin(), points.end(), hull);
+  if (hull.number_of_faces() < 4) {  // flat or too few nodes: no hull to reduce to
+    g.vertices = nodes;
+    std::sort(g.vertices.begin(), g.vertices.end());
+    return g;
+  }
+  // Hull vertices back to nodes: CGAL copies the points exactly.
+  const auto node_at = [&](const Point& p) {
+    return nodes[static_cast<std::size_t>(std::find(points.begin(), points.end(), p) - points.begin())];
+  };
+  for (auto v : hull.vertices()) g.vertices.push_back(node_at(hull.point(v)));
+  std::sort(g.vertices.begin(), g.vertices.end());
+  for (auto f : hull.faces()) {
+    std::array<int, 3> tri{};
+    int k = 0;
+    for (auto v : CGAL::vertices_around_face(hull.halfedge(f), hull)) tri[k++] = node_at(hull.point(v));
+    support::merge_into_faces(model, tri, g.faces);
+  }
+  support::set_shares(model, nodes, g.faces);
+  return g;
+}
+
+}  // namespace furniture_fem::detail
