@@ -84,6 +84,30 @@ TEST_CASE("resample: linear interpolation keeps a linear record a = 1 + 2t exact
   CHECK(coarse.acc.back() == Approx(1.0 + 2.0 * coarse.time(333)).epsilon(1e-12));
 }
 
+TEST_CASE("extreme time steps: resample refuses more than 1e9 samples, low_pass pads within the record",
+          "[excitation][processing][errors]") {
+  // Issue 13 (fuzzing): low_pass converted 3 / (f_cut dt), 3e300 for dt = 1e-300, to size_t (undefined
+  // behaviour, UBSan); resample to 1e-12 s over 1 s asked for 1e12 samples.
+  furniture_fem::Record r;
+  r.name = "tiny";
+  r.dt = 1e-300;
+  r.acc = {1.0, 2.0, 3.0, 4.0};
+  const furniture_fem::Record lp = furniture_fem::low_pass(r, 1.0);
+  REQUIRE(lp.acc.size() == 4);
+  // 1 Hz on a record of 3e-300 s: the padding is the whole record (odd reflection), the result finite.
+  for (const double a : lp.acc) CHECK(std::isfinite(a));
+  furniture_fem::Record second;
+  second.name = "one second";
+  second.dt = 0.01;
+  second.acc.assign(101, 1.0);
+  try {
+    (void)furniture_fem::resample(second, 1e-12);
+    FAIL("no InputError");
+  } catch (const furniture_fem::InputError& e) {
+    CHECK_THAT(std::string(e.what()), Catch::Contains("resample") && Catch::Contains("at most 1e9"));
+  }
+}
+
 TEST_CASE("baseline_correct: a polynomial trend of the given order is removed exactly", "[excitation][processing]") {
   const auto linear = make_record(0.01, 1001, [](double t) { return 0.3 + 0.2 * t; });
   for (double a : furniture_fem::baseline_correct(linear, 1).acc) REQUIRE(std::abs(a) < 1e-12);

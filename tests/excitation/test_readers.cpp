@@ -293,6 +293,34 @@ TEST_CASE("missing header: InputError names the file, the line and the missing f
   require_input_error([&] { (void)furniture_fem::read_jma_csv(jc); }, jc, 7, "NS,EW,UD");
 }
 
+TEST_CASE("a 50 kB header line: a named error, not a stack overflow", "[excitation][errors]") {
+  // std::regex recursed once per character of these lines and crashed (SIGSEGV) on 50 kB (issue 13,
+  // found by fuzzing); the header patterns are now scanned left to right. Each file below failed before.
+  const std::string long_digits(50000, '7'), long_blanks(50000, ' ');
+  // AT2 line 4: a sample count of 50 000 digits is implausible; blanks before "NPTS" are fine.
+  const std::string at2 = write_file("long_npts.AT2", std::string(kKobeHeader) + "NPTS = " + long_digits +
+                                                          ", DT = .020 SEC\n   .1000000E+00\n");
+  require_input_error([&] { (void)furniture_fem::read_peer_at2(at2); }, at2, 4, "NPTS");
+  const std::string padded = write_file("padded.AT2", std::string(kKobeHeader) + long_blanks +
+                                                          "NPTS =    1, DT = .020 SEC\n   .1000000E+00\n");
+  const furniture_fem::Record r = furniture_fem::read_peer_at2(padded);
+  CHECK(r.acc.size() == 1);
+  CHECK(r.dt == 0.02);
+  // K-NET "Sampling Freq" and "Scale Factor", JMA "SAMPLING RATE": 50 kB of junk after the number.
+  std::string knet = kKnetHeader;
+  knet.replace(knet.find("100Hz"), 5, "100" + std::string(50000, 'x'));
+  const std::string kf = write_file("long_freq.NS", knet + "  -19885  -19862\n");
+  require_input_error([&] { (void)furniture_fem::read_knet(kf); }, kf, 11, "Sampling Freq(Hz)");
+  knet = kKnetHeader;
+  knet.replace(knet.find("6182761"), 7, long_digits + "(");
+  const std::string ks = write_file("long_scale.NS", knet + "  -19885  -19862\n");
+  require_input_error([&] { (void)furniture_fem::read_knet(ks); }, ks, 14, "Scale Factor");
+  std::string jma = kJmaHeader;
+  jma.replace(jma.find("100Hz"), 5, long_digits + "Hz!");
+  const std::string jr = write_file("long_rate.csv", jma + "NS,EW,UD\n1,2,3\n");
+  require_input_error([&] { (void)furniture_fem::read_jma_csv(jr); }, jr, 4, "SAMPLING RATE");
+}
+
 TEST_CASE("non-numeric sample: InputError at its line, field 'sample k' (or the column name)", "[excitation][errors]") {
   const std::string at2 = write_file("alpha.AT2", std::string(kKobeHeader) +
                                                       "NPTS =   7 , DT =   .020 SEC ,\n"

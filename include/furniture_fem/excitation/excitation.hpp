@@ -16,7 +16,6 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -233,17 +232,58 @@ inline bool is_comment(const std::string& line) {
 
 inline bool starts_with(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
 
-// Does line 4 hold the PEER "NPTS = n, DT = dt" (or the older "n dt NPTS, DT")?
+// Does line 4 hold the PEER "NPTS = n, DT = dt" (anywhere in the line) or the older "n dt NPTS, DT"?
 inline bool match_npts(const std::string& line, std::string& npts, std::string& dt) {
-  static const std::regex modern(R"(NPTS\s*=\s*([0-9]+)\s*,?\s*DT\s*=\s*([-+0-9.EeDd]+))", std::regex::icase);
-  static const std::regex legacy(R"(^\s*([0-9]+)\s+([-+0-9.EeDd]+)\s+NPTS\s*,\s*DT)", std::regex::icase);
-  std::smatch m;
-  if (std::regex_search(line, m, modern) || std::regex_search(line, m, legacy)) {
-    npts = m[1].str();
-    dt = m[2].str();
-    return true;
+  const std::string up = upper(line);
+  for (std::size_t at = up.find("NPTS"); at != std::string::npos; at = up.find("NPTS", at + 1)) {
+    HeaderScan m(line, at + 4);
+    m.spaces();
+    if (!m.word("=")) continue;
+    m.spaces();
+    if (!m.token(digits, npts)) continue;
+    m.spaces();
+    m.word(",");
+    m.spaces();
+    if (!m.word("DT")) continue;
+    m.spaces();
+    if (!m.word("=")) continue;
+    m.spaces();
+    if (m.token(fortran_number, dt)) return true;
   }
-  return false;
+  HeaderScan old(line);
+  old.spaces();
+  if (!old.token(digits, npts) || !old.spaces() || !old.token(fortran_number, dt) || !old.spaces()) return false;
+  if (!old.word("NPTS")) return false;
+  old.spaces();
+  if (!old.word(",")) return false;
+  old.spaces();
+  return old.word("DT");
+}
+
+// "<number> [unit]" and nothing else, as in "100Hz" or " 100 Hz " (K-NET, JMA sampling rates).
+inline bool match_number_unit(const std::string& text, const char* unit, std::string& number) {
+  HeaderScan m(text);
+  m.spaces();
+  if (!m.token("0123456789.E+", number)) return false;
+  m.spaces();
+  m.word(unit);
+  m.spaces();
+  return m.at_end();
+}
+
+// K-NET's scale factor "3920(gal)/6182761".
+inline bool match_scale(const std::string& text, std::string& numerator, std::string& denominator) {
+  HeaderScan m(text);
+  m.spaces();
+  if (!m.token("-+0123456789.E", numerator)) return false;
+  m.spaces();
+  if (!m.word("(gal)")) return false;
+  m.spaces();
+  if (!m.word("/")) return false;
+  m.spaces();
+  if (!m.token("-+0123456789.E", denominator)) return false;
+  m.spaces();
+  return m.at_end();
 }
 
 inline void check_record(const Record& r, const char* what) {
@@ -292,7 +332,9 @@ inline void check_record(const Record& r, const char* what) {
   r.name = trim(f.lines[1]);
   r.source = path + " (PEER NGA AT2)";
   r.dt = dt;
-  r.acc.reserve(static_cast<std::size_t>(npts));
+  // What the header claims is checked against the file before any memory is taken for it: at most
+  // 8 samples per line (NPTS = 999999999 reserved 8 GB before, then bad_alloc without a file name).
+  r.acc.reserve(std::min(static_cast<std::size_t>(npts), 8 * f.lines.size()));
   for (std::size_t i = 4; i < f.lines.size(); ++i) {
     const long ln = long(i) + 1;
     parse_samples(f, ln, r.acc);
@@ -312,8 +354,6 @@ inline void check_record(const Record& r, const char* what) {
 [[nodiscard]] inline Record read_knet(const std::string& path, bool remove_mean = true) {
   using namespace detail::gm;
   const TextFile f = read_text(path);
-  static const std::regex freq_re(R"(^\s*([0-9.Ee+]+)\s*(Hz)?\s*$)", std::regex::icase);
-  static const std::regex scale_re(R"(^\s*([-+0-9.Ee]+)\s*\(gal\)\s*/\s*([-+0-9.Ee]+)\s*$)", std::regex::icase);
   double freq = 0, num_gal = 0, den = 0;
   std::string station, dir, origin;
   std::size_t i = 0;
@@ -323,15 +363,15 @@ inline void check_record(const Record& r, const char* what) {
     const long ln = long(i) + 1;
     std::vector<double> probe;
     if (!line.empty() && parse_numbers(line, probe).status == LineParse::ok && !probe.empty()) break;  // data
-    std::smatch m;
+    std::string m1, m2;
     if (starts_with(line, "Sampling Freq")) {
       const std::size_t p = line.find(')');
       const std::string v = p == std::string::npos ? line.substr(13) : line.substr(p + 1);
-      if (!std::regex_match(v, m, freq_re) || !parse_one(m[1].str(), freq) || !(freq > 0))
+      if (!match_number_unit(v, "Hz", m1) || !parse_one(m1, freq) || !(freq > 0))
         f.fail(ln, "Sampling Freq(Hz)", "not a positive frequency: '" + excerpt(v) + "'");
     } else if (starts_with(line, "Scale Factor")) {
       const std::string v = line.substr(12);
-      if (!std::regex_match(v, m, scale_re) || !parse_one(m[1].str(), num_gal) || !parse_one(m[2].str(), den) ||
+      if (!match_scale(v, m1, m2) || !parse_one(m1, num_gal) || !parse_one(m2, den) ||
           !(den != 0))
         f.fail(ln, "Scale Factor", "expected 'gal(gal)/counts' like 3920(gal)/6182761, found '" + excerpt(v) + "'");
     } else if (starts_with(line, "Station Code")) {
@@ -371,7 +411,6 @@ inline void check_record(const Record& r, const char* what) {
 [[nodiscard]] inline std::array<Record, 3> read_jma_csv(const std::string& path) {
   using namespace detail::gm;
   const TextFile f = read_text(path);
-  static const std::regex rate_re(R"(^([0-9.Ee+]+)\s*(Hz)?$)", std::regex::icase);
   static const char* const names[3] = {"NS", "EW", "UD"};
   double rate = 0, factor = 0;
   std::string site, initial;
@@ -385,14 +424,14 @@ inline void check_record(const Record& r, const char* what) {
     const std::size_t eq = line.find('=');
     if (eq != std::string::npos) {
       const std::string key = upper(trim(line.substr(0, eq))), value = trim(line.substr(eq + 1));
-      std::smatch m;
+      std::string number;
       if (key == "SITE CODE") {
         site = value;
       } else if (key == "INITIAL TIME") {
         initial = value;
       } else if (key == "SAMPLING RATE") {
         rate_line = ln;
-        if (!std::regex_match(value, m, rate_re) || !parse_one(m[1].str(), rate) || !(rate > 0))
+        if (!match_number_unit(value, "Hz", number) || !parse_one(number, rate) || !(rate > 0))
           f.fail(ln, "SAMPLING RATE", "not a positive frequency: '" + excerpt(value) + "'");
       } else if (key == "UNIT") {
         unit_line = ln;
@@ -618,12 +657,17 @@ inline void write_columns(const std::string& path, const Record& r) {
 
 // Linear interpolation onto a new step over the same time span (the last sample may be dropped
 // when the span is not a multiple of dt). Down-sampling does not low-pass: call low_pass first.
+inline constexpr double max_resampled = 1e9;  // samples (8 GB)
 [[nodiscard]] inline Record resample(const Record& rec, double dt) {
   detail::gm::check_record(rec, "resample");
   if (!(dt > 0) || !std::isfinite(dt)) throw InputError("resample: dt must be positive");
   Record r = rec;
   r.dt = dt;
-  const auto n = static_cast<std::size_t>(std::floor(rec.duration() / dt + 1e-6)) + 1;
+  const double samples = std::floor(rec.duration() / dt + 1e-6) + 1;
+  if (!(samples <= max_resampled))
+    throw InputError("resample: dt = " + detail::gm::num(dt) + " s over " + detail::gm::num(rec.duration()) +
+                     " s gives " + detail::gm::num(samples) + " samples (at most 1e9)");
+  const auto n = static_cast<std::size_t>(samples);
   r.acc.resize(n);
   for (std::size_t i = 0; i < n; ++i) r.acc[i] = rec.value_at(rec.t0 + double(i) * dt);
   return r;
@@ -657,7 +701,9 @@ inline void write_columns(const std::string& path, const Record& r) {
                                 detail::gm::num(0.5 / rec.dt) + " Hz)");
   const auto sections = detail::gm::butterworth_lowpass(order, f_cut, rec.dt);
   const std::size_t n = rec.acc.size();
-  const std::size_t pad = std::min<std::size_t>(n - 1, static_cast<std::size_t>(std::ceil(3.0 / (f_cut * rec.dt))));
+  // Compared as doubles first: 3 / (f dt) overflows size_t for a tiny dt (undefined; found by fuzzing).
+  const double periods = std::ceil(3.0 / (f_cut * rec.dt));
+  const std::size_t pad = periods < double(n - 1) ? static_cast<std::size_t>(periods) : n - 1;
   std::vector<double> x(n + 2 * pad);
   for (std::size_t k = 0; k < pad; ++k) {
     x[pad - 1 - k] = 2.0 * rec.acc[0] - rec.acc[k + 1];

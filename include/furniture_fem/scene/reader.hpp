@@ -344,14 +344,53 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
   return s;
 }
 
+namespace detail {
+// A scene is a few kilobytes with a handful of levels. Deeper or larger input is refused before the
+// JSON library sees it: its serializer (used in error messages) recurses once per level, and a
+// 100 000-deep array overflowed the stack (issue 13).
+inline constexpr std::size_t scene_max_bytes = std::size_t{64} << 20;
+inline constexpr int scene_max_depth = 64;
+
+// The line of the first bracket nested deeper than scene_max_depth (outside strings), or 0.
+inline long line_too_deep(const std::string& text) {
+  int depth = 0;
+  long line = 1;
+  bool in_string = false, escaped = false;
+  for (const char c : text) {
+    if (c == '\n') ++line;
+    if (in_string) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > scene_max_depth) return line;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return 0;
+}
+}  // namespace detail
+
 // Reads a scene file. JSON syntax errors report the line; relative paths inside the file are taken
 // relative to the file's folder (SceneSpec::resolve).
 inline SceneSpec parse_scene(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "", "cannot open the scene file");
+  in.seekg(0, std::ios::end);
+  const auto size = static_cast<std::size_t>(std::max<std::streamoff>(0, in.tellg()));
+  if (size > detail::scene_max_bytes)
+    throw InputError(path, 0, "", "the scene file has " + std::to_string(size) + " bytes; a scene may have at most " +
+                                      std::to_string(detail::scene_max_bytes) + " (64 MiB)");
+  in.seekg(0);
   std::stringstream buffer;
   buffer << in.rdbuf();
   const std::string text = buffer.str();
+  if (const long deep = detail::line_too_deep(text))
+    throw InputError(path, deep, "", "values nested more than " + std::to_string(detail::scene_max_depth) +
+                                         " levels deep (arrays and objects)");
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
@@ -359,6 +398,8 @@ inline SceneSpec parse_scene(const std::string& path) {
     const auto upto = text.begin() + static_cast<std::ptrdiff_t>(std::min(text.size(), static_cast<size_t>(e.byte)));
     const long line = 1 + std::count(text.begin(), upto, '\n');
     throw InputError(path, line, "", std::string("not valid JSON: ") + e.what());
+  } catch (const nlohmann::json::exception& e) {  // e.g. a number out of range (1e400): no position given
+    throw InputError(path, 0, "", std::string("not valid JSON: ") + e.what());
   }
   SceneSpec s = parse_scene_json(j, path);
   s.base_dir = std::filesystem::path(path).parent_path().string();

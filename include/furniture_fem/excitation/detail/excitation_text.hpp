@@ -5,6 +5,7 @@
 #ifndef FURNITURE_FEM_EXCITATION_INTERNAL
 #error "furniture_fem/excitation/detail/excitation_text.hpp is internal: include <furniture_fem/excitation/excitation.hpp>"
 #endif
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -135,5 +136,46 @@ inline std::string num(double v) {
   std::snprintf(buf, sizeof buf, "%.6g", v);
   return buf;
 }
+
+// A left-to-right scan of one header line: what the readers' header patterns need, each step
+// linear in the line's length. std::regex recursed once per character and overflowed the stack on a
+// 50 kB header line (issue 13), so the patterns are written out with this instead.
+class HeaderScan {
+ public:
+  explicit HeaderScan(const std::string& line, std::size_t from = 0) : s_(line), p_(from) {}
+  std::size_t spaces() {  // skips blanks and tabs; returns how many
+    const std::size_t q = p_;
+    while (p_ < s_.size() && (s_[p_] == ' ' || s_[p_] == '\t' || s_[p_] == '\r')) ++p_;
+    return p_ - q;
+  }
+  bool word(const char* w) {  // a literal, case-insensitive
+    std::size_t q = p_;
+    for (; *w; ++w, ++q)
+      if (q >= s_.size() || std::toupper(static_cast<unsigned char>(s_[q])) != std::toupper(static_cast<unsigned char>(*w)))
+        return false;
+    p_ = q;
+    return true;
+  }
+  bool token(const char* chars, std::string& out) {  // one or more characters of the set (case-insensitive)
+    const std::size_t q = p_;
+    while (p_ < s_.size() && in_set(s_[p_], chars)) ++p_;
+    out = s_.substr(q, p_ - q);
+    return p_ > q;
+  }
+  bool at_end() const { return p_ == s_.size(); }
+
+ private:
+  static bool in_set(char c, const char* chars) {
+    const int u = std::toupper(static_cast<unsigned char>(c));
+    for (; *chars; ++chars)
+      if (u == std::toupper(static_cast<unsigned char>(*chars))) return true;
+    return false;
+  }
+  const std::string& s_;
+  std::size_t p_;
+};
+
+inline constexpr const char* digits = "0123456789";
+inline constexpr const char* fortran_number = "-+0123456789.ED";
 
 }  // namespace furniture_fem::detail::gm

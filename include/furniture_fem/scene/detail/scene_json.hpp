@@ -59,9 +59,20 @@ class ObjectReader {
   static std::string describe(const json& v) {
     const std::string type = v.is_string() ? "a string" : v.is_boolean() ? "a boolean" : v.is_number() ? "a number"
                              : v.is_array() ? "an array" : v.is_object() ? "an object" : "null";
-    std::string text = v.dump();
+    std::string text = brief(v, 60);
     if (text.size() > 60) text = text.substr(0, 57) + "...";
     return type + " (" + text + ")";
+  }
+  // The start of v's JSON text, about `room` characters, without serialising all of a large value.
+  static std::string brief(const json& v, std::size_t room) {
+    if (!v.is_structured()) return v.dump();
+    std::string out = v.is_array() ? "[" : "{";
+    for (auto it = v.begin(); it != v.end() && out.size() <= room; ++it) {
+      if (it != v.begin()) out += ",";
+      if (v.is_object()) out += json(it.key()).dump() + ":";
+      out += brief(*it, room - std::min(room, out.size()));
+    }
+    return out + (v.is_array() ? "]" : "}");
   }
 
   // Every key present must be one of `allowed`: a misspelt key is an error, not a silent default.
@@ -141,7 +152,7 @@ class ObjectReader {
 
   // Range checks, with the offending value in the message.
   void require(bool ok, std::string_view key, const std::string& rule) const {
-    if (!ok) fail(path(key), rule + " (got " + raw(key).dump() + ")");
+    if (!ok) fail(path(key), rule + " (got " + brief(raw(key), 60) + ")");
   }
   void positive(std::string_view key) const {
     if (has(key)) require(raw(key).get<double>() > 0, key, "must be positive");
