@@ -385,6 +385,42 @@ TEST_CASE("a broken scene file gives an InputError naming the key before the run
   }
 }
 
+TEST_CASE("a run length that is not a finite number of steps is refused before the run starts", "[runner][errors]") {
+  // Issue 13: --duration -1, 0 and nan "completed after 0 steps" (exit 0); 1e300 ran forever; a
+  // scene refresh_every of 1e300 became "every step" (lround out of range).
+  const std::string dir = fresh_dir("run_length");
+  const std::string out = dir + "/out";
+  const SceneSpec spec = parse_scene(write_json(dir + "/scene.json", small_scene_json(out)));
+  for (const double d : {-1.0, 0.0, 1e-9, std::nan(""), std::numeric_limits<double>::infinity(), 1e300}) {
+    RunOptions opt = quiet(out);
+    opt.duration = d;
+    try {
+      run_scene(spec, opt);
+      FAIL("no InputError for duration " << d);
+    } catch (const InputError& e) {
+      INFO("duration " << d << ": " << e.what());
+      CHECK_THAT(std::string(e.what()), Catch::Contains("duration"));
+      CHECK_FALSE(fs::exists(out));
+    }
+  }
+  SceneSpec rare = spec;
+  rare.refresh_every = 1e300;
+  CHECK(rare.refresh_interval_steps() == 1000000000);
+}
+
+TEST_CASE("a wall normal is kept as written: read and to_json round-trip to the bit", "[scene][json]") {
+  const std::string dir = fresh_dir("wall_normal");
+  json j = small_scene_json(dir + "/out");
+  j["walls"] = json::parse(R"([{"name": "slanted", "point": [1.9, 0, 0], "normal": [-1, 1, 0]},
+                               {"name": "odd", "point": [-1.9, 0, 0], "normal": [0.3, 0.1, 0]}])");
+  const SceneSpec once = parse_scene(write_json(dir + "/a.json", j));
+  const json first = to_json(once);
+  const SceneSpec twice = parse_scene(write_json(dir + "/b.json", first));
+  CHECK(to_json(twice) == first);
+  CHECK(twice.walls.at(0).normal == Vec3(-1, 1, 0));  // normalised it moved by an ulp each time
+  CHECK(twice.walls.at(1).normal == Vec3(0.3, 0.1, 0));
+}
+
 TEST_CASE("a stop request ends the run with status 'stopped' and readable outputs", "[runner]") {
   SECTION("stop already requested: nothing is stepped") {
     const std::string out = fresh_dir("stop_now");

@@ -171,7 +171,7 @@ TEST_CASE("a scene file round-trips exactly", "[scene][json]") {
                     {"vtu_every", 50},
                     {"figures", false}};
     const SceneSpec scene = parse_scene_json(j, "full.json");
-    CHECK(scene.walls[0].normal == Vec3(0, -1, 0));  // normalised on reading
+    CHECK(scene.walls[0].normal == Vec3(0, -2, 0));  // kept as written (normalised where used)
     CHECK(scene.items[4].name == "table");           // unnamed items take their kind's name
     CHECK(scene.refresh_interval_steps() == 20);  // 0.02 s at the default dt of 1 ms
     SceneSpec coarse_steps;

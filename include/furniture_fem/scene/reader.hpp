@@ -219,7 +219,8 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
         w.fail(w.path("normal"), "must be a non-zero horizontal vector (walls are vertical), got [" +
                                      detail::fmt(wall.normal.x()) + ", " + detail::fmt(wall.normal.y()) + ", " +
                                      detail::fmt(wall.normal.z()) + "]");
-      wall.normal.normalize();
+      // Kept as written (every use normalises it): normalised here, [1, 1, 0] moved by an ulp at each
+      // read / to_json round trip.
       wall.height = w.number("height", wall.height);
       wall.width = w.number("width", wall.width);
       w.positive("height");

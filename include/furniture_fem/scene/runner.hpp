@@ -61,7 +61,25 @@ inline int row_interval_steps(const RunOptions& opt, double dt) {
   if (!(opt.output_interval > 0) || !std::isfinite(opt.output_interval))
     throw InputError("RunOptions", 0, "output_interval",
                      "must be a positive time in s (got " + std::to_string(opt.output_interval) + ")");
-  return static_cast<int>(std::clamp(std::lround(opt.output_interval / dt), 1L, 1000000000L));
+  // Rounded and clamped as a double: lround of 1e300 / dt is out of long's range (undefined).
+  return static_cast<int>(std::clamp(std::round(opt.output_interval / dt), 1.0, 1e9));
+}
+
+inline constexpr double max_run_steps = 1e9;  // at 1 ms: 11.6 days of simulated time
+
+// The run's length (RunOptions::duration over the scene's): positive, finite and at most 1e9 steps of
+// dt. `--duration 1e300` ran forever, `-1` and `0` completed after 0 steps (issue 13).
+inline void check_run_length(const SceneSpec& spec, const RunOptions& opt) {
+  const double t_end = opt.duration.value_or(spec.duration);
+  const std::string key = opt.duration ? "duration (run option)" : "duration";
+  if (!(t_end >= spec.dt) || !std::isfinite(t_end))
+    throw InputError(opt.duration ? "RunOptions" : spec.source, 0, key,
+                     "must be a finite time of at least one step dt = " + detail::fmt(spec.dt) + " s (got " +
+                         detail::fmt(t_end) + ")");
+  if (!(t_end / spec.dt <= max_run_steps))
+    throw InputError(opt.duration ? "RunOptions" : spec.source, 0, key,
+                     detail::fmt(t_end) + " s is " + detail::fmt(t_end / spec.dt) + " steps of dt = " +
+                         detail::fmt(spec.dt) + " s; a run may have at most 1e9");
 }
 
 namespace detail {
@@ -166,7 +184,8 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt, const std:
 inline RunSummary run_scene(const SceneSpec& spec, const RunOptions& opt = {}, const std::vector<RunObserver*>& extra = {}) {
   const auto t_start = std::chrono::steady_clock::now();
   validate(spec);
-  row_interval_steps(opt, spec.dt);  // a bad interval fails before the model is built
+  row_interval_steps(opt, spec.dt);  // a bad interval or length fails before the model is built
+  check_run_length(spec, opt);
   const bool direct = spec.solver == SolverKind::direct;
   switch (spec.contact.law) {
     case ContactLawKind::paper:

@@ -173,7 +173,8 @@ struct SceneSpec {
   // accuracy that every 0.1 s keeps.
   double refresh_every = 0.1;
   int refresh_interval_steps() const {
-    return static_cast<int>(std::clamp(std::lround(refresh_every / dt), 1L, 1000000000L));
+    // Rounded and clamped as a double: lround(1e300 / dt) is out of long's range (it became every step).
+    return static_cast<int>(std::clamp(std::round(refresh_every / dt), 1.0, 1e9));
   }
   double duration = 10.0;  // s
   double dt = 1e-3;        // s (the paper's 1 ms)
