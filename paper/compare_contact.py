@@ -82,9 +82,11 @@ def records_of(scene, scene_dir):
     return [os.path.normpath(os.path.join(scene_dir, f)) for f in fs]
 
 
-def cell(r):
+def cell(r, summ):
     if r is None:
         return "-"
+    if summ.get("status") != "completed":  # the state at the stop is not an outcome
+        return "(%s at %.2f s)" % (summ.get("status", "?"), summ.get("t_end_s", float("nan")))
     return "%s, %.3f, %.1f" % (r["state"], r["slide_m"], r["tilt_deg"])
 
 
@@ -154,25 +156,27 @@ def main():
               "cog_dx_m", "cog_dy_m", "cog_dz_m"]
     with open(os.path.join(a.results, "contact_comparison.csv"), "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["case", "fidelity", "law", "contact_law"] + fields + ["wall_s", "status"])
+        w.writerow(["case", "fidelity", "law", "contact_law"] + fields + ["wall_s", "status", "t_end_s"])
         for c, fid, law, summ, final in runs:
             claw = summ.get("scene", {}).get("contact", {}).get("law", "")
             for r in final:
                 d = r.get("cog_displacement_m", [None] * 3)
                 row = [r.get(k, "") for k in fields[:7]] + list(d)
                 w.writerow([c, fid, law, claw] + row + ["%.2f" % summ.get("wall_seconds", float("nan")),
-                                                         summ.get("status", "")])
+                                                         summ.get("status", ""), summ.get("t_end_s", "")])
             if not final:
-                w.writerow([c, fid, law, claw] + [""] * len(fields) + ["", summ.get("status", "")])
+                w.writerow([c, fid, law, claw] + [""] * len(fields) + ["", summ.get("status", ""), ""])
 
     cols = [(fid, law) for fid in fids for law in laws]
     md = ["# Configuration 3 under JMA-Kobe: outcomes by fidelity and contact law", "",
           "Written by `paper/compare_contact.py` (furniture_quake: `%s`). Every item at the same fidelity;"
-          % os.path.basename(a.furniture_quake),
+          % a.furniture_quake,
           "`paper` = the scene's own law (%s), `stiff` = `\"contact\": {\"law\": \"stiff\"}`. `auto` leaves"
           % ", ".join(sorted({scenes[c][0].get("contact", {}).get("law", "paper") for c in cases})),
           "an item rigid unless a sectional force of it is asked for: here the desk stays flexible.",
-          "Cell: final state, slide (m), final tilt (deg). Last row: wall time of the run (s) and status.", ""]
+          "Cell: final state, slide (m), final tilt (deg) at 12 s; a run that stopped early (status not",
+          "`completed`) shows its status and when it stopped. Last row: wall time of the run (s) and status.",
+          "Per-body numbers of every run, stopped ones included: contact_comparison.csv.", ""]
     for c in cases:
         md += ["## Case %s" % CASE_TITLE.get(c, c), ""]
         md.append("| body | " + " | ".join("%s, %s" % fc for fc in cols) + " |")
@@ -184,7 +188,8 @@ def main():
                 if b not in bodies:
                     bodies.append(b)
         for b in bodies:
-            md.append("| %s | " % b + " | ".join(cell(by.get(fc, ({}, {}))[1].get(b)) for fc in cols) + " |")
+            md.append("| %s | " % b + " | ".join(cell(by.get(fc, ({}, {}))[1].get(b), by.get(fc, ({}, {}))[0])
+                                                 for fc in cols) + " |")
         md.append("| wall s | " + " | ".join(
             "%.1f (%s)" % (by[fc][0].get("wall_seconds", float("nan")), by[fc][0].get("status", "?"))
             if fc in by else "-" for fc in cols) + " |")
