@@ -302,9 +302,9 @@ TEST_CASE("a 50 kB header line: a named error, not a stack overflow", "[excitati
                                                           ", DT = .020 SEC\n   .1000000E+00\n");
   require_input_error([&] { (void)furniture_fem::read_peer_at2(at2); }, at2, 4, "NPTS");
   const std::string padded = write_file("padded.AT2", std::string(kKobeHeader) + long_blanks +
-                                                          "NPTS =    1, DT = .020 SEC\n   .1000000E+00\n");
+                                                          "NPTS =    2, DT = .020 SEC\n   .1000000E+00   .2000000E+00\n");
   const furniture_fem::Record r = furniture_fem::read_peer_at2(padded);
-  CHECK(r.acc.size() == 1);
+  CHECK(r.acc.size() == 2);
   CHECK(r.dt == 0.02);
   // K-NET "Sampling Freq" and "Scale Factor", JMA "SAMPLING RATE": 50 kB of junk after the number.
   std::string knet = kKnetHeader;
@@ -319,6 +319,37 @@ TEST_CASE("a 50 kB header line: a named error, not a stack overflow", "[excitati
   jma.replace(jma.find("100Hz"), 5, long_digits + "Hz!");
   const std::string jr = write_file("long_rate.csv", jma + "NS,EW,UD\n1,2,3\n");
   require_input_error([&] { (void)furniture_fem::read_jma_csv(jr); }, jr, 4, "SAMPLING RATE");
+}
+
+TEST_CASE("implausible time steps and fewer than two samples: a named error at the header line",
+          "[excitation][errors]") {
+  // Issue 13: DT = inf, 1e-300, 1e300 or 1e5 s ran, and NPTS = 0 "completed" with a table that never
+  // moved. A strong-motion record is sampled every 1e-5 to 1 s and has at least two samples.
+  const std::string two = "   .1000000E+00   .2000000E+00\n";
+  for (const char* dt : {"1e-300", "1E+300", "1E5", "2.0", "5E-6"}) {
+    const std::string p = write_file("dt.AT2", std::string(kKobeHeader) + "NPTS =    2, DT = " + dt + " SEC\n" + two);
+    INFO("DT = " << dt);
+    require_input_error([&] { (void)furniture_fem::read_peer_at2(p); }, p, 4, "DT");
+  }
+  for (const char* dt : {"1", "1E-5", ".005"}) {  // the ends of the range are records
+    const std::string p = write_file("dt_ok.AT2", std::string(kKobeHeader) + "NPTS =    2, DT = " + dt + " SEC\n" + two);
+    CHECK(furniture_fem::read_peer_at2(p).acc.size() == 2);
+  }
+  for (const char* n : {"0", "1"}) {
+    const std::string p = write_file("few.AT2", std::string(kKobeHeader) + "NPTS =    " + n + ", DT = .01 SEC\n" +
+                                                    (n[0] == '1' ? "   .1000000E+00\n" : ""));
+    require_input_error([&] { (void)furniture_fem::read_peer_at2(p); }, p, 4, "NPTS");
+  }
+  std::string knet = kKnetHeader;
+  knet.replace(knet.find("100Hz"), 5, "0.001Hz");
+  const std::string kf = write_file("slow.NS", knet + "  -19885  -19862\n");
+  require_input_error([&] { (void)furniture_fem::read_knet(kf); }, kf, 11, "Sampling Freq(Hz)");
+  std::string jma = kJmaHeader;
+  jma.replace(jma.find("100Hz"), 5, "1e9Hz");
+  const std::string jr = write_file("fast.csv", jma + "NS,EW,UD\n1,2,3\n4,5,6\n");
+  require_input_error([&] { (void)furniture_fem::read_jma_csv(jr); }, jr, 4, "SAMPLING RATE");
+  const std::string cols = write_file("hours.txt", "0 1.0\n3600 2.0\n7200 3.0\n");
+  require_input_error([&] { (void)furniture_fem::read_columns(cols); }, cols, 2, "time");
 }
 
 TEST_CASE("non-numeric sample: InputError at its line, field 'sample k' (or the column name)", "[excitation][errors]") {

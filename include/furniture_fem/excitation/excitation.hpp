@@ -286,6 +286,14 @@ inline bool match_scale(const std::string& text, std::string& numerator, std::st
   return m.at_end();
 }
 
+// What a strong-motion record can be: sampled between 100 kHz and 1 Hz, with at least two samples.
+// Outside, the file is wrong (a header typo, a unit read as a step); it ran before (issue 13).
+inline constexpr double min_record_dt = 1e-5, max_record_dt = 1.0;  // s
+inline std::string record_dt_problem(double dt) {
+  if (dt >= min_record_dt && dt <= max_record_dt) return {};
+  return "implausible time step " + num(dt) + " s (a strong-motion record is sampled every 1e-5 to 1 s)";
+}
+
 inline void check_record(const Record& r, const char* what) {
   if (!(r.dt > 0) || !std::isfinite(r.dt))
     throw InputError(std::string(what) + ": record '" + r.name + "' has dt = " + num(r.dt) +
@@ -309,6 +317,8 @@ inline void check_record(const Record& r, const char* what) {
   const long npts = std::stol(npts_s);
   double dt = 0;
   if (!parse_one(dt_s, dt) || !(dt > 0)) f.fail(4, "DT", "not a positive time step: '" + excerpt(dt_s) + "'");
+  if (const std::string why = record_dt_problem(dt); !why.empty()) f.fail(4, "DT", why);
+  if (npts < 2) f.fail(4, "NPTS", "a record needs at least 2 samples (NPTS = " + npts_s + ")");
 
   const std::string units = upper(f.lines[2]);
   if (!contains(units, "ACCEL"))
@@ -369,6 +379,7 @@ inline void check_record(const Record& r, const char* what) {
       const std::string v = p == std::string::npos ? line.substr(13) : line.substr(p + 1);
       if (!match_number_unit(v, "Hz", m1) || !parse_one(m1, freq) || !(freq > 0))
         f.fail(ln, "Sampling Freq(Hz)", "not a positive frequency: '" + excerpt(v) + "'");
+      if (const std::string why = record_dt_problem(1.0 / freq); !why.empty()) f.fail(ln, "Sampling Freq(Hz)", why);
     } else if (starts_with(line, "Scale Factor")) {
       const std::string v = line.substr(12);
       if (!match_scale(v, m1, m2) || !parse_one(m1, num_gal) || !parse_one(m2, den) ||
@@ -394,7 +405,7 @@ inline void check_record(const Record& r, const char* what) {
   r.source = path + " (K-NET/KiK-net ASCII" + (origin.empty() ? "" : ", origin " + origin) + ")";
   r.dt = 1.0 / freq;
   for (; i < f.lines.size(); ++i) parse_samples(f, long(i) + 1, r.acc);
-  if (r.acc.empty()) f.fail(long(f.lines.size()), "samples", "no samples after the header");
+  if (r.acc.size() < 2) f.fail(long(f.lines.size()), "samples", "a record needs at least 2 samples after the header");
   const double to_gal = num_gal / den;
   double mean = 0;
   if (remove_mean) {
@@ -433,6 +444,7 @@ inline void check_record(const Record& r, const char* what) {
         rate_line = ln;
         if (!match_number_unit(value, "Hz", number) || !parse_one(number, rate) || !(rate > 0))
           f.fail(ln, "SAMPLING RATE", "not a positive frequency: '" + excerpt(value) + "'");
+        if (const std::string why = record_dt_problem(1.0 / rate); !why.empty()) f.fail(ln, "SAMPLING RATE", why);
       } else if (key == "UNIT") {
         unit_line = ln;
         const std::string u = upper(value);
@@ -578,6 +590,7 @@ inline void check_record(const Record& r, const char* what) {
                                               num(times[k]) + " s, the record's step is " + num(median) + " s");
     r.t0 = times.front();
     r.dt = (times.back() - times.front()) / double(times.size() - 1);
+    if (const std::string why = record_dt_problem(r.dt); !why.empty()) f.fail(time_lines[1], "time", why);
   }
   const double factor = unit_factor(opt.unit);
   for (double& a : r.acc) a *= factor;
