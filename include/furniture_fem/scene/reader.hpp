@@ -265,6 +265,9 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
     const ObjectReader c = r.object("contact");
     c.allow_only({"law", "implicit", "velocity_regularisation", "stick_length", "floor", "wall", "item"});
     s.contact.law = c.enumeration("law", detail::law_names, s.contact.law, "contact law");
+    // `stiff` is built for contact inside the implicit step: its default is every item's floor and wall
+    // contact there (explicit, its spring is past the stable step of a frame's nodes at dt 1 ms).
+    if (s.contact.law == ContactLawKind::stiff) s.contact.implicit = ImplicitContact::all;
     s.contact.implicit = c.enumeration("implicit", detail::implicit_contact_names, s.contact.implicit, "implicit contact");
     s.contact.velocity_regularisation = c.number("velocity_regularisation", s.contact.velocity_regularisation);
     c.positive("velocity_regularisation");

@@ -124,6 +124,11 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
     }
     if (o.damping) p.c_lin = p.c_t = *o.damping;
   };
+  // The `stiff` law between items: one cap for the scene (the pair takes the mean of two items' values),
+  // from its lightest node (cap_for_explicit_pairs).
+  double lightest = std::numeric_limits<double>::infinity();
+  if (s.contact.law == ContactLawKind::stiff)
+    for (const auto& it : items) lightest = std::min(lightest, lightest_node_mass(model, it.body));
   for (const auto& it : items) {
     BodyContact bc;
     const ItemContact& c = it.contact;
@@ -154,6 +159,7 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
     bc.wall.mu = bc.wall.mu_long = bc.wall.mu_short = c.mu_wall;
     bc.item = base;
     bc.item.mu = bc.item.mu_long = bc.item.mu_short = c.mu_item;
+    if (s.contact.law == ContactLawKind::stiff) cap_for_explicit_pairs(bc.item, lightest, s.dt);
     apply(bc.floor, s.contact.floor);
     apply(bc.wall, s.contact.wall);
     apply(bc.item, s.contact.item);
