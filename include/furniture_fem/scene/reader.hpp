@@ -176,9 +176,20 @@ inline void parse_ground_motion(const ObjectReader& r, GroundMotionSpec& g) {
   g.file_y = files.string("y", "");
   g.file_z = files.string("z", "");
   if (g.file_x.empty()) files.fail(files.path("x"), "required: the record along X (the excitation direction)");
-  if (g.dimensions == MotionDimensions::three_d)
-    for (auto [key, file] : {std::pair{"y", &g.file_y}, std::pair{"z", &g.file_z}})
-      if (file->empty()) files.fail(files.path(key), "required for dimensions \"3d\"");
+  // A JMA CSV file holds NS, EW and UD: files.y and files.z were required for 3-D and then not read.
+  const bool one_file = g.format == RecordFormat::jma_csv;
+  for (auto [key, file] : {std::pair{"y", &g.file_y}, std::pair{"z", &g.file_z}})
+    if (one_file && !file->empty())
+      files.fail(files.path(key), "not used with format \"jma_csv\": the file of files.x holds the three components "
+                                  "(NS along X, EW along Y, UD along Z)");
+    else if (!one_file && g.dimensions == MotionDimensions::three_d && file->empty())
+      files.fail(files.path(key), "required for dimensions \"3d\"");
+  // Only a column file takes its unit and sample spacing from the scene; the other formats state
+  // theirs in the file, and these keys were read and ignored.
+  for (auto key : {"units", "dt"})
+    if (r.has(key) && g.format != RecordFormat::columns)
+      r.fail(r.path(key), "only used with format \"columns\" (a file of format \"" + enum_name(format_names, g.format) +
+                              "\" states its own " + (std::string(key) == "dt" ? "time step" : "unit") + ")");
   if (r.has("units")) g.units = r.enumeration("units", unit_names, AccelerationUnits::g, "acceleration unit");
   g.dt = r.optional_number("dt");
   // The sample spacing of a column file, as plausible as a record header's (1e-300 or 1e300 ran).

@@ -198,7 +198,8 @@ inline void validate(const SceneSpec& s) {
   if (g.source == MotionSource::file) {
     for (auto [key, file] : {std::pair{"x", &g.file_x}, std::pair{"y", &g.file_y}, std::pair{"z", &g.file_z}}) {
       if (file->empty()) {
-        if (std::string(key) == "x" || g.dimensions == MotionDimensions::three_d)
+        // A JMA CSV file holds the three components: files.x alone.
+        if (std::string(key) == "x" || (g.dimensions == MotionDimensions::three_d && g.format != RecordFormat::jma_csv))
           fail(std::string("ground_motion.files.") + key, "required (dimensions \"" +
                                                               detail::enum_name(detail::dimension_names, g.dimensions) + "\")");
         continue;
