@@ -184,7 +184,7 @@ TEST_CASE("JMA CSV: three components NS, EW, UD in gal -> m/s^2 (* 0.01), dt = 1
   CHECK(furniture_fem::read_record(p, furniture_fem::Format::automatic, ew).acc[0] == Approx(0.0125).epsilon(1e-14));
 
   // A UTF-8 BOM and CRLF line ends (CSV exports on Windows) change nothing.
-  std::string crlf = "\xEF\xBB\xBF" + std::string(kJmaHeader) + "NS,EW,UD\n-0.5,1.25,3.0\n";
+  std::string crlf = "\xEF\xBB\xBF" + std::string(kJmaHeader) + "NS,EW,UD\n-0.5,1.25,3.0\n0,0,0\n";
   for (std::size_t k = crlf.find('\n'); k != std::string::npos; k = crlf.find('\n', k + 2)) crlf.insert(k, "\r");
   const std::string w = write_file("kobe_jma_crlf.csv", crlf);
   REQUIRE(furniture_fem::detect_format(w) == furniture_fem::Format::jma_csv);
@@ -193,11 +193,15 @@ TEST_CASE("JMA CSV: three components NS, EW, UD in gal -> m/s^2 (* 0.01), dt = 1
   CHECK(cw[1].acc[0] == Approx(0.0125).epsilon(1e-14));
 
   // Columns in another order are mapped by name.
-  const std::string q = write_file("jma_order.csv", std::string(kJmaHeader) + " UD, NS, EW\n1,2,3\n");
+  const std::string q = write_file("jma_order.csv", std::string(kJmaHeader) + " UD, NS, EW\n1,2,3\n0,0,0\n");
   const auto d = furniture_fem::read_jma_csv(q);
   CHECK(d[0].acc[0] == Approx(0.02));
   CHECK(d[1].acc[0] == Approx(0.03));
   CHECK(d[2].acc[0] == Approx(0.01));
+
+  // One sample is no record (it ran before, issue 13; tests/corpus/cases/record_jma/one_sample.json).
+  const std::string one = write_file("jma_one_sample.csv", std::string(kJmaHeader) + "NS,EW,UD\n1,2,3\n");
+  CHECK_THROWS_AS(furniture_fem::read_jma_csv(one), furniture_fem::InputError);
 }
 
 TEST_CASE("columns: (time, gal) pairs give dt = t1 - t0 and t0 = first time; values need dt", "[excitation][readers]") {

@@ -528,6 +528,7 @@ inline void check_record(const Record& r, const char* what) {
     for (int c = 0; c < 3; ++c) out[c].acc.push_back(row[column_of[c]] * factor);
   }
   if (out[0].acc.empty()) f.fail(long(f.lines.size()), "samples", "no samples after the header");
+  if (out[0].acc.size() < 2) f.fail(long(f.lines.size()), "samples", "a record needs at least 2 samples after the header");
   return out;
 }
 
@@ -574,6 +575,10 @@ inline void check_record(const Record& r, const char* what) {
   }
   if (r.acc.empty()) f.fail(last_ln > 0 ? last_ln : long(f.lines.size()), "samples", "no samples");
   if (layout == Layout::values) {
+    // The spacing comes from the caller: as plausible as a header's, and two samples at least (one
+    // sample, or dt = 1e-300 or 1e300, ran before: issue 13).
+    if (const std::string why = record_dt_problem(opt.dt); !why.empty()) f.fail(0, "dt", why);
+    if (r.acc.size() < 2) f.fail(last_ln, "samples", "a record needs at least 2 samples");
     r.dt = opt.dt;
   } else {
     if (times.size() < 2) f.fail(last_ln, "time", "a (time, acceleration) file needs 2 samples to give dt");
@@ -738,7 +743,11 @@ inline constexpr double max_resampled = 1e9;  // samples (8 GB)
 // is limited to half the window.
 [[nodiscard]] inline Record window(const Record& rec, double t_start, double t_end, double taper_seconds = 0) {
   detail::gm::check_record(rec, "window");
-  if (!(t_end >= t_start)) throw InputError("window: t_end must not be before t_start");
+  // Named with the record and its file: a scene's window that starts after its record ends lands here.
+  if (!(t_end >= t_start))
+    throw InputError("window: t_start = " + detail::gm::num(t_start) + " s is after t_end = " + detail::gm::num(t_end) +
+                     " s; record '" + rec.name + "' (" + rec.source + ") spans [" + detail::gm::num(rec.t0) + ", " +
+                     detail::gm::num(rec.t_end()) + "] s");
   if (!(taper_seconds >= 0)) throw InputError("window: taper_seconds must be >= 0");
   const double eps = 1e-6 * rec.dt;
   // A sample within 1e-6 dt of a bound counts as inside (t / dt is rarely an exact integer).

@@ -9,8 +9,10 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../core/errors.hpp"
@@ -174,12 +176,24 @@ inline void parse_ground_motion(const ObjectReader& r, GroundMotionSpec& g) {
   g.file_y = files.string("y", "");
   g.file_z = files.string("z", "");
   if (g.file_x.empty()) files.fail(files.path("x"), "required: the record along X (the excitation direction)");
-  if (g.dimensions == MotionDimensions::three_d)
-    for (auto [key, file] : {std::pair{"y", &g.file_y}, std::pair{"z", &g.file_z}})
-      if (file->empty()) files.fail(files.path(key), "required for dimensions \"3d\"");
+  // A JMA CSV file holds NS, EW and UD: files.y and files.z were required for 3-D and then not read.
+  const bool one_file = g.format == RecordFormat::jma_csv;
+  for (auto [key, file] : {std::pair{"y", &g.file_y}, std::pair{"z", &g.file_z}})
+    if (one_file && !file->empty())
+      files.fail(files.path(key), "not used with format \"jma_csv\": the file of files.x holds the three components "
+                                  "(NS along X, EW along Y, UD along Z)");
+    else if (!one_file && g.dimensions == MotionDimensions::three_d && file->empty())
+      files.fail(files.path(key), "required for dimensions \"3d\"");
+  // Only a column file takes its unit and sample spacing from the scene; the other formats state
+  // theirs in the file, and these keys were read and ignored.
+  for (auto key : {"units", "dt"})
+    if (r.has(key) && g.format != RecordFormat::columns)
+      r.fail(r.path(key), "only used with format \"columns\" (a file of format \"" + enum_name(format_names, g.format) +
+                              "\" states its own " + (std::string(key) == "dt" ? "time step" : "unit") + ")");
   if (r.has("units")) g.units = r.enumeration("units", unit_names, AccelerationUnits::g, "acceleration unit");
   g.dt = r.optional_number("dt");
-  r.positive("dt");
+  // The sample spacing of a column file, as plausible as a record header's (1e-300 or 1e300 ran).
+  read_range(r, "dt", 1e-5, 1.0, false);
 }
 
 }  // namespace detail
@@ -355,26 +369,44 @@ namespace detail {
 inline constexpr std::size_t scene_max_bytes = std::size_t{64} << 20;
 inline constexpr int scene_max_depth = 64;
 
-// The line of the first bracket nested deeper than scene_max_depth (outside strings), or 0.
-inline long line_too_deep(const std::string& text) {
-  int depth = 0;
+// The first problem of a scene's structure that the JSON library would not report, with its line
+// (0: none): a bracket nested deeper than scene_max_depth (outside strings), or a key given twice in
+// one object, which the library reads silently as the last value (`"dt": 0.001, ..., "dt": 0.01`
+// ran at 0.01, issue 13). Keys are compared as written (escapes not decoded). Linear in the text.
+inline std::pair<long, std::string> structure_problem(const std::string& text) {
+  std::vector<std::pair<bool, std::set<std::string>>> open;  // (is an object, its keys so far)
   long line = 1;
-  bool in_string = false, escaped = false;
-  for (const char c : text) {
-    if (c == '\n') ++line;
-    if (in_string) {
-      if (escaped) escaped = false;
-      else if (c == '\\') escaped = true;
-      else if (c == '"') in_string = false;
+  const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; };
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
     } else if (c == '"') {
-      in_string = true;
+      const long at = line;
+      std::string word;
+      std::size_t j = i + 1;
+      for (; j < text.size() && text[j] != '"'; ++j) {
+        if (text[j] == '\\' && j + 1 < text.size()) word += text[j++];
+        if (text[j] == '\n') ++line;
+        word += text[j];
+      }
+      i = j;  // the closing quote
+      std::size_t k = j + 1;
+      while (k < text.size() && blank(text[k])) ++k;
+      if (k < text.size() && text[k] == ':' && !open.empty() && open.back().first &&
+          !open.back().second.insert(word).second)
+        return {at, "key \"" + (word.size() > 60 ? word.substr(0, 57) + "..." : word) +
+                        "\" given twice in one object (only one value can be meant)"};
     } else if (c == '[' || c == '{') {
-      if (++depth > scene_max_depth) return line;
-    } else if (c == ']' || c == '}') {
-      --depth;
+      if (open.size() >= static_cast<std::size_t>(scene_max_depth))
+        return {line, "values nested more than " + std::to_string(scene_max_depth) +
+                          " levels deep (arrays and objects)"};
+      open.push_back({c == '{', {}});
+    } else if ((c == ']' || c == '}') && !open.empty()) {
+      open.pop_back();
     }
   }
-  return 0;
+  return {0, {}};
 }
 }  // namespace detail
 
@@ -392,9 +424,7 @@ inline SceneSpec parse_scene(const std::string& path) {
   std::stringstream buffer;
   buffer << in.rdbuf();
   const std::string text = buffer.str();
-  if (const long deep = detail::line_too_deep(text))
-    throw InputError(path, deep, "", "values nested more than " + std::to_string(detail::scene_max_depth) +
-                                         " levels deep (arrays and objects)");
+  if (const auto [line, problem] = detail::structure_problem(text); line > 0) throw InputError(path, line, "", problem);
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
@@ -403,7 +433,15 @@ inline SceneSpec parse_scene(const std::string& path) {
     const long line = 1 + std::count(text.begin(), upto, '\n');
     throw InputError(path, line, "", std::string("not valid JSON: ") + e.what());
   } catch (const nlohmann::json::exception& e) {  // e.g. a number out of range (1e400): no position given
-    throw InputError(path, 0, "", std::string("not valid JSON: ") + e.what());
+    // The line of the number the library quotes ("number overflow parsing '1e400'"), found in the text.
+    const std::string what = e.what();
+    const auto q = what.find("parsing '");
+    const auto q_end = q == std::string::npos ? q : what.find('\'', q + 9);
+    long line = 0;
+    if (q_end != std::string::npos && q_end > q + 9)
+      if (const auto at = text.find(what.substr(q + 9, q_end - q - 9)); at != std::string::npos)
+        line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n');
+    throw InputError(path, line, "", "not valid JSON: " + what);
   }
   SceneSpec s = parse_scene_json(j, path);
   s.base_dir = std::filesystem::path(path).parent_path().string();

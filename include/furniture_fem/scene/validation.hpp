@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <system_error>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -94,6 +95,30 @@ class FootprintGrid {
   mutable std::map<std::pair<long, long>, std::vector<Entry>> cells_;
 };
 
+// Names end up in CSV headers, file names and console lines: printable, at most 100 bytes. A newline
+// in a marker name was written into markers.csv, which the project's own reader then could not read
+// back; a 300-character name failed the PNG write after the whole run (issue 13). The problem, or "".
+inline constexpr std::size_t max_name_bytes = 100;
+inline std::string name_problem(const std::string& name) {
+  for (const char c : name)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      return "must not hold control characters (a newline, a tab, a NUL...)";
+  if (name.size() > max_name_bytes)
+    return "must have at most " + std::to_string(max_name_bytes) + " bytes (got " + std::to_string(name.size()) + ")";
+  return {};
+}
+// A path with a control character: a NUL cut the path short where the system read it, so the run
+// used another file or folder than the scene names (issue 13).
+inline bool has_control_character(const std::string& path) {
+  return std::any_of(path.begin(), path.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
+}
+// is_regular_file without the exception: a name longer than the system allows threw a bare
+// filesystem_error that named neither the scene nor the key (issue 13); it is "not found".
+inline bool is_file(const std::string& path) {
+  std::error_code ec;
+  return std::filesystem::is_regular_file(path, ec);
+}
+
 }  // namespace detail
 
 // Checks what parsing alone cannot: item names, items inside the table, clear of the walls and of
@@ -118,6 +143,7 @@ inline void validate(const SceneSpec& s) {
     const auto& item = s.items[i];
     if (item.name.empty() || item.name.find_first_of("./") != std::string::npos)
       fail(path + ".name", "must be non-empty and hold no '.' or '/' (got \"" + item.name + "\")");
+    if (const auto why = detail::name_problem(item.name); !why.empty()) fail(path + ".name", why);
     if (!names.insert(item.name).second) fail(path + ".name", "duplicate item name \"" + item.name + "\"");
     const ItemKindEntry* kind = item_kind_registry().find(item.kind.name());
     if (!kind)
@@ -166,16 +192,21 @@ inline void validate(const SceneSpec& s) {
     placed.place(long(i), footprints[i]);
   }
 
+  if (detail::has_control_character(s.outputs.folder))
+    fail("outputs.folder", "must not hold control characters (a NUL, a newline...)");
   const auto& g = s.ground_motion;
   if (g.source == MotionSource::file) {
     for (auto [key, file] : {std::pair{"x", &g.file_x}, std::pair{"y", &g.file_y}, std::pair{"z", &g.file_z}}) {
       if (file->empty()) {
-        if (std::string(key) == "x" || g.dimensions == MotionDimensions::three_d)
+        // A JMA CSV file holds the three components: files.x alone.
+        if (std::string(key) == "x" || (g.dimensions == MotionDimensions::three_d && g.format != RecordFormat::jma_csv))
           fail(std::string("ground_motion.files.") + key, "required (dimensions \"" +
                                                               detail::enum_name(detail::dimension_names, g.dimensions) + "\")");
         continue;
       }
-      if (!std::filesystem::is_regular_file(s.resolve(*file)))
+      if (detail::has_control_character(*file))
+        fail(std::string("ground_motion.files.") + key, "must not hold control characters (a NUL, a newline...)");
+      if (!detail::is_file(s.resolve(*file)))
         fail(std::string("ground_motion.files.") + key, "record file not found: \"" + s.resolve(*file) + "\"");
     }
   }
@@ -188,9 +219,12 @@ inline void validate(const SceneSpec& s) {
   }
   if (g.window_end && *g.window_end <= g.window_start)
     fail("ground_motion.window.end", "must be later than window.start (" + detail::fmt(g.window_start) + " s)");
-  for (size_t i = 0; i < s.obstacles.size(); ++i)
-    if (!std::filesystem::is_regular_file(s.resolve(s.obstacles[i].file)))
+  for (size_t i = 0; i < s.obstacles.size(); ++i) {
+    if (detail::has_control_character(s.obstacles[i].file))
+      fail("obstacles[" + std::to_string(i) + "].file", "must not hold control characters (a NUL, a newline...)");
+    if (!detail::is_file(s.resolve(s.obstacles[i].file)))
       fail("obstacles[" + std::to_string(i) + "].file", "mesh file not found: \"" + s.resolve(s.obstacles[i].file) + "\"");
+  }
 
   // Build every item once: it proves the calibration targets reachable and gives markers and members.
   Model scratch;
@@ -207,9 +241,14 @@ inline void validate(const SceneSpec& s) {
     for (const auto& [name, info] : bodies) list += (list.empty() ? "" : ", ") + name;
     return list;
   };
+  std::map<std::string, size_t> marker_names;  // a name twice gave two columns of the same name
   for (size_t k = 0; k < s.outputs.markers.size(); ++k) {
     const auto& m = s.outputs.markers[k];
     const std::string path = "outputs.markers[" + std::to_string(k) + "]";
+    if (const auto why = detail::name_problem(m.name); !why.empty()) fail(path + ".name", why);
+    if (const auto [at, fresh] = marker_names.emplace(m.name, k); !fresh)
+      fail(path + ".name", "duplicate marker name \"" + m.name + "\" (also outputs.markers[" +
+                               std::to_string(at->second) + "])");
     const auto it = bodies.find(m.item);
     if (it == bodies.end())
       fail(path, "marker \"" + m.name + "\" is on no item: \"" + m.item + "\" is not one of: " + body_names());
