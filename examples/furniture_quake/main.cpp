@@ -3,109 +3,164 @@
 // marker, contact-force, sectional-force and energy histories (CSV), the final state of every item
 // and a run summary (JSON), a VTU/PVD time series for ParaView, and PNG figures.
 //
-//   furniture_quake [scene.json] [--out DIR] [--duration S] [--output-interval S] [--no-figures]
-//                   [--quiet] [--config K] [--records DIR]
+//   furniture_quake [scene.json | --config K [--records DIR]] [--out DIR] [--duration S]
+//                   [--output-interval S] [--no-figures] [--quiet]      (--help, --version)
 //
-// Ctrl-C stops the run cleanly: everything written so far stays readable, the summary says where it
-// stopped, and the exit code is 130. Exit codes: 0 completed, 1 bad input, 3 diverged, 130 stopped.
+// The command line is parsed by CLI11. Exit codes: 0 done (also --help, --version), 1 bad input
+// (a scene or record file), 2 usage (a bad command line), 3 diverged, 130 interrupted. Ctrl-C or
+// SIGTERM, at any phase, stops cleanly: everything written so far stays readable; a second one
+// leaves at once.
 #include <furniture_fem/scene/scene_runner.hpp>
+
+#include <CLI/CLI.hpp>
 
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <string>
 
 namespace {
-std::atomic<bool> g_stop{false};
-void on_interrupt(int) { g_stop = true; }
+using namespace furniture_fem;
 
-// --help: the usage on stdout, exit 0 (a bad command line is an error on stderr, exit 1).
-int print_help() {
-  std::cout << "usage: furniture_quake [scene.json] [--out DIR] [--duration S] [--output-interval S] [--no-figures]\n"
-               "                       [--quiet] [--config K] [--records DIR]\n"
-               "  without a scene: configuration 3 under the built-in synthetic 3-D motion, 10 s\n"
-               "  --output-interval S: history rows every S seconds of simulated time (default 0.01)\n"
-               "  --config K: the paper's configuration K (1, 2, 3) with the JMA-Kobe records in\n"
-               "              --records DIR (default ../shared/ground_motions)\n";
-  return 0;
+enum ExitCode : int { exit_done = 0, exit_bad_input = 1, exit_usage = 2, exit_diverged = 3, exit_interrupted = 130 };
+
+std::atomic<bool> g_stop{false};
+// The first signal asks for a clean stop; a second one leaves at once (a phase that does not look
+// at the flag, such as building a large mesh, can still be cut short).
+extern "C" void on_interrupt(int) {
+  if (g_stop.exchange(true)) std::_Exit(exit_interrupted);
+}
+
+// Installed first thing, so that reading and validation are covered too. A signal the parent ignores
+// stays ignored (the convention for a script's background jobs, which Ctrl-C must not reach).
+void install_interrupt_handlers() {
+  for (int sig : {SIGINT, SIGTERM})
+    if (std::signal(sig, on_interrupt) == SIG_IGN) std::signal(sig, SIG_IGN);
+}
+
+int interrupted(const std::string& phase) {
+  std::cerr << "furniture_quake: interrupted " << phase << "; nothing run, nothing written\n";
+  return exit_interrupted;
+}
+
+struct CommandLine {
+  std::string scene, out_dir, records = "../shared/ground_motions";
+  double duration = 0;
+  int config = 0;  // 0: not asked for
+  bool has_duration() const { return duration > 0; }
+};
+
+// Far beyond any earthquake, far below the run-length limit's overflow (run_scene checks steps too).
+constexpr double max_seconds = 1e6;  // written "1e6" in the message below
+
+// A time in s: the whole text a finite number in (0, max_seconds]. CLI11 puts the option's name first.
+CLI::Validator seconds() {
+  return CLI::Validator(
+      [](std::string& w) -> std::string {
+        double x = 0;
+        if (!text::parse_finite(w, x)) return "not a finite number: '" + w + "'";
+        if (!(x > 0) || x > max_seconds)
+          return "must be a time in s, greater than 0 and at most 1e6 (got " + w + ")";
+        return {};
+      },
+      "", "seconds");
+}
+
+CLI::Validator configuration_number() {
+  return CLI::Validator(
+      [](std::string& w) -> std::string {
+        long k = 0;
+        if (!text::parse_integer(w, k) || k < 1 || k > 3) return "not 1, 2 or 3: '" + w + "'";
+        return {};
+      },
+      "", "configuration");
+}
+
+void define_options(CLI::App& app, CommandLine& cl, RunOptions& opt) {
+  app.set_version_flag("--version", std::string("furniture_quake (furniture_fem) ") + version_string);
+  auto* scene = app.add_option("scene", cl.scene, "scene file (JSON, docs/scene/scene_file.md); without one: "
+                                                  "configuration 3, built-in synthetic 3-D motion, 10 s");
+  scene->type_name("FILE");
+  app.add_option("--out", cl.out_dir, "results folder (default: the scene's outputs.folder)")->type_name("DIR");
+  app.add_option("--duration", cl.duration, "simulated time in s, instead of the scene's")
+      ->type_name("S")->check(seconds());
+  app.add_option("--output-interval", opt.output_interval, "history rows every S s of simulated time")
+      ->type_name("S")->check(seconds())->capture_default_str();
+  app.add_flag_callback("--no-figures", [&opt] { opt.figures = false; }, "write no PNG figures");
+  app.add_flag_callback("--quiet", [&opt] { opt.progress = false; }, "no progress bar");
+  auto* config = app.add_option("--config", cl.config, "the paper's configuration K (1, 2, 3) under the JMA-Kobe records");
+  config->type_name("K")->check(configuration_number())->excludes(scene);
+  app.add_option("--records", cl.records, "folder of the JMA-Kobe records for --config")
+      ->type_name("DIR")->capture_default_str()->needs(config);
+  app.footer("Exit codes: 0 done, 1 bad input (a scene or record file), 2 usage (a bad command line),\n"
+             "3 diverged, 130 interrupted (Ctrl-C or SIGTERM; a second one leaves at once).");
+}
+
+// A bad command line: what CLI11 found, naming the option and the value.
+std::string usage_error(const CLI::App* app, const CLI::Error& e) {
+  return "furniture_quake: usage error: " + std::string(e.what()) + "\nRun with --help for more information.\n";
+}
+
+SceneSpec read_scene(const CommandLine& cl) {
+  if (!cl.scene.empty()) return parse_scene(cl.scene);
+  if (cl.config) return configuration(cl.config, cl.records);
+  // The built-in default: configuration 3 under the seeded synthetic 3-D motion.
+  SceneSpec spec = configuration(3);
+  spec.name = "configuration 3, synthetic 3-D motion";
+  spec.ground_motion = GroundMotionSpec{};
+  spec.ground_motion.source = MotionSource::synthetic;
+  spec.ground_motion.pga = 8.0;
+  spec.ground_motion.dimensions = MotionDimensions::three_d;
+  spec.duration = 10.0;
+  spec.outputs.folder = "results/default";
+  return spec;
+}
+
+int report(const SceneSpec& spec, const RunSummary& s) {
+  std::printf("%s: %s at t = %.3f s after %ld steps, %.1f s wall time (%d elements, %d nodes, %d bodies)\n",
+              spec.name.c_str(), s.status.c_str(), s.t_end, s.steps, s.wall_seconds, s.elements, s.nodes, s.bodies);
+  if (!s.diagnosis.empty()) std::printf("  %s\n", s.diagnosis.c_str());
+  std::printf("  energy ledger imbalance: %.3g of its scale at the end (max %.3g)\n", s.energy_imbalance,
+              s.max_energy_imbalance);
+  for (const auto& it : s.items)
+    std::printf("  %-28s %-16s slide %.3f m  tilt %5.1f deg (max %5.1f)%s%s\n", it.name.c_str(), it.state.c_str(),
+                it.slide, it.tilt_deg, it.max_tilt_deg, it.resting_on.empty() ? "" : "  on ", it.resting_on.c_str());
+  std::printf("  results in %s\n", s.out_dir.c_str());
+  // A stopped run is not a complete one: scripts see 130 (the shell's code for Ctrl-C).
+  if (s.status == "stopped") return exit_interrupted;
+  return s.status == "diverged" ? exit_diverged : exit_done;
+}
+
+int run(const CommandLine& cl, RunOptions opt) {
+  const SceneSpec spec = read_scene(cl);
+  if (g_stop) return interrupted("while reading the scene");
+  opt.out_dir = cl.out_dir;
+  if (cl.has_duration()) opt.duration = cl.duration;
+  opt.stop = &g_stop;
+  std::cerr << "furniture_fem " << version_string << ": " << spec.name << "\n";
+  return report(spec, run_scene(spec, opt));
 }
 }  // namespace
 
 int main(int argc, char** argv) {
-  using namespace furniture_fem;
-  std::string scene_path, out_dir, records = "../shared/ground_motions";
-  std::optional<double> duration;
-  std::optional<int> config;
+  install_interrupt_handlers();
+  CLI::App app("Runs a furniture scene under a ground motion and writes a results folder.", "furniture_quake");
+  CommandLine cl;
   RunOptions opt;
+  define_options(app, cl, opt);
+  app.failure_message(usage_error);
   try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      auto next = [&]() -> std::string {
-        if (i + 1 >= argc) throw InputError("command line", 0, a, "needs a value");
-        return argv[++i];
-      };
-      // A number with nothing after it ("0.05xyz" and "nan" are refused), named in the error.
-      auto number = [&]() {
-        const std::string w = next();
-        double x = 0;
-        if (!text::parse_finite(w, x)) throw InputError("command line", 0, a, "not a finite number: '" + w + "'");
-        return x;
-      };
-      if (a == "--out") out_dir = next();
-      else if (a == "--duration") duration = number();
-      else if (a == "--output-interval") opt.output_interval = number();
-      else if (a == "--no-figures") opt.figures = false;
-      else if (a == "--quiet") opt.progress = false;
-      else if (a == "--config") {
-        const std::string w = next();
-        long k = 0;
-        if (!text::parse_integer(w, k) || k < 1 || k > 3) throw InputError("command line", 0, a, "not 1, 2 or 3: '" + w + "'");
-        config = static_cast<int>(k);
-      }
-      else if (a == "--records") records = next();
-      else if (a == "-h" || a == "--help") return print_help();
-      else if (!a.empty() && a[0] == '-') throw InputError("command line", 0, a, "unknown option");
-      else scene_path = a;
-    }
-    SceneSpec spec;
-    if (!scene_path.empty()) {
-      spec = parse_scene(scene_path);
-    } else if (config) {
-      spec = configuration(*config, records);
-    } else {
-      // The built-in default: configuration 3 under the seeded synthetic 3-D motion.
-      spec = configuration(3);
-      spec.name = "configuration 3, synthetic 3-D motion";
-      spec.ground_motion = GroundMotionSpec{};
-      spec.ground_motion.source = MotionSource::synthetic;
-      spec.ground_motion.pga = 8.0;
-      spec.ground_motion.dimensions = MotionDimensions::three_d;
-      spec.duration = 10.0;
-      spec.outputs.folder = "results/default";
-    }
-    opt.out_dir = out_dir;
-    opt.duration = duration;
-    opt.stop = &g_stop;
-    std::signal(SIGINT, on_interrupt);
-    std::signal(SIGTERM, on_interrupt);
-    std::cerr << "furniture_fem " << version_string << ": " << spec.name << "\n";
-    const RunSummary s = run_scene(spec, opt);
-    std::printf("%s: %s at t = %.3f s after %ld steps, %.1f s wall time (%d elements, %d nodes, %d bodies)\n",
-                spec.name.c_str(), s.status.c_str(), s.t_end, s.steps, s.wall_seconds, s.elements, s.nodes, s.bodies);
-    if (!s.diagnosis.empty()) std::printf("  %s\n", s.diagnosis.c_str());
-    std::printf("  energy ledger imbalance: %.3g of its scale at the end (max %.3g)\n", s.energy_imbalance,
-                s.max_energy_imbalance);
-    for (const auto& it : s.items)
-      std::printf("  %-28s %-16s slide %.3f m  tilt %5.1f deg (max %5.1f)%s%s\n", it.name.c_str(), it.state.c_str(),
-                  it.slide, it.tilt_deg, it.max_tilt_deg, it.resting_on.empty() ? "" : "  on ",
-                  it.resting_on.c_str());
-    std::printf("  results in %s\n", s.out_dir.c_str());
-    // A stopped run is not a complete one: scripts see 130 (the shell's code for Ctrl-C).
-    if (s.status == "stopped") return 130;
-    return s.status == "diverged" ? 3 : 0;
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? exit_done : exit_usage;  // --help and --version are "errors" of code 0
+  }
+  if (g_stop) return interrupted("while reading the command line");
+  try {
+    return run(cl, opt);
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
-    return 1;
+    return exit_bad_input;
   }
 }

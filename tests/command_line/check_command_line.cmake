@@ -1,0 +1,93 @@
+# Runs furniture_quake with good and bad command lines and checks each exit code and message; run by
+# ctest (tests/command_line/CMakeLists.txt) as:
+#   cmake -DPROGRAM=<furniture_quake> -DVERSION=<project version> -DSCENE=<a scene file needing no other file>
+#         -DWORK_DIR=<scratch folder> -P check_command_line.cmake
+# Everything runs in WORK_DIR, so a check that wrongly starts a run writes nothing elsewhere.
+cmake_minimum_required(VERSION 3.20)
+file(REMOVE_RECURSE ${WORK_DIR})
+file(MAKE_DIRECTORY ${WORK_DIR})
+set(failures 0)
+
+# check(<expected exit code> <regex the output must match> <arguments...>): stdout and stderr are
+# matched together except that --help and --version must print on stdout (see check_stdout).
+function(run_program)
+  execute_process(COMMAND ${PROGRAM} ${ARGN} WORKING_DIRECTORY ${WORK_DIR} TIMEOUT 120
+                  RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  set(code "${code}" PARENT_SCOPE)
+  set(out "${out}" PARENT_SCOPE)
+  set(err "${err}" PARENT_SCOPE)
+endfunction()
+
+function(verdict expected_code regex text args)
+  if(NOT code STREQUAL expected_code OR NOT text MATCHES "${regex}")
+    message(SEND_ERROR "furniture_quake ${args}: expected exit ${expected_code} and '${regex}', "
+                       "got exit ${code}\n--- stdout:\n${out}--- stderr:\n${err}")
+    math(EXPR failures "${failures} + 1")
+    set(failures ${failures} PARENT_SCOPE)
+  else()
+    message(STATUS "ok: furniture_quake ${args} -> ${code}")
+  endif()
+endfunction()
+
+macro(check expected_code regex)
+  run_program(${ARGN})
+  verdict(${expected_code} "${regex}" "${out}${err}" "${ARGN}")
+endmacro()
+
+macro(check_stdout expected_code regex)
+  run_program(${ARGN})
+  verdict(${expected_code} "${regex}" "${out}" "${ARGN}")
+endmacro()
+
+# --help and --version: stdout, exit 0.
+check_stdout(0 "Usage:.*--duration.*--output-interval.*--config.*Exit codes: 0 done, 1 bad input.*2 usage.*3 diverged.*130 interrupted" --help)
+check_stdout(0 "Usage:" -h)
+check_stdout(0 "furniture_fem. ${VERSION}" --version)
+
+# Usage errors: exit 2, the option and the value named.
+foreach(bad -1 0 abc nan inf 1e300 0.05xyz)
+  check(2 "usage error: --duration: .*${bad}" --duration ${bad} --quiet --no-figures)
+endforeach()
+check(2 "usage error: --duration: .*not a finite number: 'nan'" --duration nan)
+check(2 "usage error: --duration: .*at most 1e6 .got 1e300." --duration 1e300)
+check(2 "usage error: --duration.*required" --duration)
+foreach(bad -0.01 0 abc nan inf 1e300)
+  check(2 "usage error: --output-interval: .*${bad}" --output-interval ${bad} --duration 0.05)
+endforeach()
+foreach(bad 0 4 1.5 x)
+  check(2 "usage error: --config: not 1, 2 or 3: '${bad}'" --config ${bad})
+endforeach()
+check(2 "usage error: .*--bogus" --bogus)
+check(2 "usage error: .*--config.*scene|usage error: .*scene.*--config" scene.json --config 1)
+check(2 "usage error: --records.*--config" --records somewhere)
+check(2 "usage error: .*second.json" first.json second.json)
+
+# Bad input: exit 1, the file named.
+check(1 "error: .*no_such_scene.json" no_such_scene.json)
+
+# A short run completes (exit 0); Ctrl-C and SIGTERM during a run stop it cleanly (exit 130). The
+# signal is sent to the program itself: `exec` keeps the shell's pid, and a foreground program
+# (unlike a script's background job) has SIGINT at its default.
+check(0 "completed at t = 0.050 s" --duration 0.05 --quiet --no-figures --out short)
+foreach(signal TERM INT)
+  set(run "(sleep 1; kill -${signal} $$) & exec \"$0\" --duration 60 --quiet --no-figures --out stopped_${signal}")
+  execute_process(COMMAND sh -c "${run}" ${PROGRAM} WORKING_DIRECTORY ${WORK_DIR} TIMEOUT 120
+                  RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  verdict(130 "interrupt" "${out}${err}" "SIG${signal} after 1 s")
+endforeach()
+
+# SIGTERM while the scene is read: the scene is a FIFO, so the program waits in the reading phase until
+# the test writes the scene into it, after the signal. It must end at once after reading, nothing run.
+set(run "mkfifo fifo.json; \"$0\" fifo.json --quiet --no-figures --out fifo & p=$!; sleep 0.5; kill -TERM $p;
+         sleep 0.3; cat \"$1\" > fifo.json; wait $p")
+execute_process(COMMAND sh -c "${run}" ${PROGRAM} ${SCENE} WORKING_DIRECTORY ${WORK_DIR} TIMEOUT 120
+                RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+verdict(130 "interrupted while reading the scene; nothing run" "${out}${err}" "SIGTERM while reading")
+if(EXISTS ${WORK_DIR}/fifo)
+  message(SEND_ERROR "SIGTERM while reading: the run started (${WORK_DIR}/fifo exists)")
+  math(EXPR failures "${failures} + 1")
+endif()
+
+if(failures GREATER 0)
+  message(FATAL_ERROR "${failures} command line check(s) failed")
+endif()
