@@ -12,4 +12,7 @@ if [ -n "$missing" ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $missing
 fi
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release ${FFEM_CMAKE_ARGS:-}
-cmake --build build -j "$(nproc)"
+# FFEM_TARGETS: only these targets (the main command builds the main job alone); default: everything.
+targets=""
+for t in ${FFEM_TARGETS:-}; do targets="$targets --target $t"; done
+cmake --build build -j "$(nproc)" $targets
