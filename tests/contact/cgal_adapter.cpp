@@ -318,6 +318,26 @@ TEST_CASE("broken or empty mesh files throw InputError naming file and line", "[
     CHECK(e.line() == 4);
     CHECK_THAT(std::string(e.what()), Catch::Contains("empty"));
   }
+  SECTION("OFF: counts far beyond the file are read up to its end, allocating nothing for them") {
+    // Issue 13: a vertex count of 1e12 reserved 24 TB (bad_alloc / length_error), and a face's vertex
+    // count of LONG_MAX overflowed `n + 1` (then read past the face's words).
+    for (const char* nv : {"1000000000000", "9223372036854775807"}) {
+      INFO(nv);
+      write_text(tmp + "/huge_count.off", std::string("OFF\n") + nv + " 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+      const auto e = input_error_of([&] { read_triangle_mesh(tmp + "/huge_count.off"); });
+      CHECK(e.field() == "vertex 4");
+      CHECK_THAT(std::string(e.what()), Catch::Contains("ends early"));
+    }
+    write_text(tmp + "/huge_faces.off", "OFF\n3 9223372036854775807 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+    auto e = input_error_of([&] { read_triangle_mesh(tmp + "/huge_faces.off"); });
+    CHECK(e.field() == "face 1");
+    CHECK_THAT(std::string(e.what()), Catch::Contains("ends early"));
+    write_text(tmp + "/huge_face.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n9223372036854775807 0 1 2\n");
+    e = input_error_of([&] { read_triangle_mesh(tmp + "/huge_face.off"); });
+    CHECK(e.line() == 6);
+    CHECK(e.field() == "face 0");
+    CHECK_THAT(std::string(e.what()), Catch::Contains("declares 9223372036854775807 vertices but lists 3"));
+  }
   SECTION("OBJ: a face naming a vertex that does not exist") {
     std::string text = cube_obj();
     text.replace(text.find("f 5//1"), 6, "f 9//1");

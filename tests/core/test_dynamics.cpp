@@ -249,3 +249,22 @@ TEST_CASE("an undamped cantilever in free vibration keeps its energy", "[dynamic
   CHECK(drift < 1e-6);
   CHECK(imbalance < 1e-6);
 }
+
+TEST_CASE("a time step below SimulationOptions::min_dt is refused, naming dt", "[dynamics][input]") {
+  // Issue 13: dt = 1e-300 was accepted; 1 / (beta dt^2) overflowed and the run "diverged; try a
+  // smaller dt". The bound itself (1e-9 s) is accepted.
+  LFrame f;
+  SimulationOptions opt;
+  for (const double dt : {1e-300, 1e-12, 0.0, -1e-3}) {
+    opt.dt = dt;
+    INFO("dt = " << dt);
+    REQUIRE_THROWS_AS((Simulation<AsiGaussTimoshenko>(f.model, Newmark::paper(), opt)), ModelError);
+    REQUIRE_THROWS_WITH((Simulation<AsiGaussTimoshenko>(f.model, Newmark::paper(), opt)),
+                        Catch::Contains("dt must be finite and at least 1e-09 s (got " + detail::fmt(dt) + ")"));
+  }
+  opt.dt = SimulationOptions::min_dt;
+  Simulation<AsiGaussTimoshenko> sim(f.model, Newmark::paper(), opt);
+  sim.step();
+  REQUIRE(sim.time() == SimulationOptions::min_dt);
+  REQUIRE(sim.position(0).allFinite());
+}

@@ -1,7 +1,10 @@
 // VTU and PVD writers, read back with a minimal XML scan.
 #include <catch2/catch.hpp>
 
+#include <sys/resource.h>
+
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -125,6 +128,70 @@ TEST_CASE("VTU rejects inconsistent meshes and names the path", "[vtk]") {
     FAIL("write into a missing folder did not throw");
   } catch (const OutputError& e) {
     CHECK(std::string(e.what()).find(missing) != std::string::npos);
+  }
+}
+
+namespace {
+// While alive, regular files cannot grow beyond `bytes` (writes past it fail with EFBIG, SIGXFSZ
+// ignored): a full disk, for this process only.
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) {
+    getrlimit(RLIMIT_FSIZE, &saved_);
+    old_handler_ = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit r = saved_;
+    r.rlim_cur = bytes;
+    ok_ = setrlimit(RLIMIT_FSIZE, &r) == 0;
+  }
+  ~FileSizeLimit() {
+    setrlimit(RLIMIT_FSIZE, &saved_);
+    std::signal(SIGXFSZ, old_handler_);
+  }
+  bool ok() const { return ok_; }
+
+ private:
+  rlimit saved_{};
+  void (*old_handler_)(int) = nullptr;
+  bool ok_ = false;
+};
+}  // namespace
+
+TEST_CASE("a VTU or PVD write that fails leaves no .tmp file behind", "[vtk]") {
+  // Issue 13: a full disk left vtu/room_<step>.vtu.tmp files behind, one per frame.
+  LineMesh m;
+  for (int i = 0; i < 2000; ++i) m.points.push_back(Eigen::Vector3d(i, 0.5 * i, 1.0 / (i + 1)));
+  for (int i = 0; i + 1 < 2000; ++i) m.lines.push_back({i, i + 1});
+  SECTION("the disk fills up while writing") {
+    const std::string path = tmp("full_disk.vtu");
+    fs::remove(path);
+    fs::remove(path + ".tmp");
+    {
+      FileSizeLimit full(4096);  // the mesh's text is about 100 kB
+      REQUIRE(full.ok());
+      try {
+        write_vtu(path, m);
+        FAIL("a write past the file size limit did not throw");
+      } catch (const OutputError& e) {
+        CHECK_THAT(std::string(e.what()), Catch::Contains("error while writing '" + path + ".tmp'"));
+      }
+    }
+    CHECK_FALSE(fs::exists(path + ".tmp"));
+    CHECK_FALSE(fs::exists(path));
+    write_vtu(path, m);  // without the limit the same write succeeds
+    CHECK(fs::file_size(path) > 4096);
+  }
+  SECTION("the rename fails (a folder where the file should go)") {
+    const std::string path = tmp("a_folder.vtu"), pvd_path = tmp("a_folder.pvd");
+    for (const auto& p : {path, pvd_path}) {
+      fs::remove_all(p);
+      fs::create_directories(p + "/inside");
+    }
+    CHECK_THROWS_WITH(write_vtu(path, m), Catch::Contains("cannot rename '" + path + ".tmp' to '" + path + "'"));
+    CHECK_FALSE(fs::exists(path + ".tmp"));
+    PvdWriter pvd(pvd_path);
+    pvd.add(0.0, "a.vtu");
+    CHECK_THROWS_AS(pvd.write(), OutputError);
+    CHECK_FALSE(fs::exists(pvd_path + ".tmp"));
   }
 }
 

@@ -271,7 +271,9 @@ inline TriangleMesh read_off(const std::string& file, const std::string& text) {
     throw InputError(file, count_line, "counts", "expected 'vertices faces edges' as non-negative integers");
   if (nv == 0 || nf == 0) throw InputError(file, count_line, "counts", "the mesh is empty (no vertices or no faces)");
   TriangleMesh mesh;
-  mesh.vertices.reserve(static_cast<std::size_t>(nv));
+  // Each vertex takes a line: reserve no more than the file has left (a claimed count of 1e12 gave a
+  // length_error; now the file ends early at the first vertex it lacks).
+  mesh.vertices.reserve(static_cast<std::size_t>(std::min<long>(nv, static_cast<long>(t.lines.size() - i))));
   for (long v = 0; v < nv; ++v) {
     auto [ln, s] = next_line(("vertex " + std::to_string(v)).c_str());
     mesh.vertices.push_back(parse_point(file, ln, "vertex " + std::to_string(v), split_words(s), 0));
@@ -284,7 +286,7 @@ inline TriangleMesh read_off(const std::string& file, const std::string& text) {
     long n = 0;
     if (!parse_integer(w[0], n) || n < 3)
       throw InputError(file, ln, field, "expected a vertex count of at least 3, got '" + std::string(w[0]) + "'");
-    if (static_cast<long>(w.size()) < n + 1)
+    if (n > static_cast<long>(w.size()) - 1)  // not n + 1 > size: n may be LONG_MAX
       throw InputError(file, ln, field, "declares " + std::to_string(n) + " vertices but lists " + std::to_string(w.size() - 1));
     face.clear();
     for (long k = 1; k <= n; ++k) {

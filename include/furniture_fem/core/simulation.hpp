@@ -40,7 +40,11 @@
 namespace furniture_fem {
 
 struct SimulationOptions {
+  // s; at least min_dt. Below it the integrator's mass term m / (beta dt^2) swamps the stiffness in
+  // double precision (a 0.1 kg node at 1e-9 s: 4e17 N/m against members' 1e6 N/m), and it overflows
+  // below 1e-154 s: dt = 1e-300 ran and then "diverged; try a smaller dt" (issue 13).
   double dt = 1e-3;
+  static constexpr double min_dt = 1e-9;
   Vec3 gravity = Vec3(0, 0, -9.80665);
   double mass_damping = 0;      // C = mass_damping * M (1/s); 0: no viscous damping
   int max_iterations = 25;      // for EquilibriumMode::iterate
@@ -136,8 +140,9 @@ class Simulation {
       : model_(model), integrator_(integrator), opt_(options), coef_(integrator.coefficients()),
         contact_(std::move(contact)) {
     model_.validate();
-    if (!(opt_.dt > 0) || !std::isfinite(opt_.dt))
-      throw ModelError("simulation: dt must be positive and finite (got " + detail::fmt(opt_.dt) + ")");
+    if (!(opt_.dt >= SimulationOptions::min_dt) || !std::isfinite(opt_.dt))
+      throw ModelError("simulation: dt must be finite and at least " + detail::fmt(SimulationOptions::min_dt) +
+                       " s (got " + detail::fmt(opt_.dt) + ")");
     if constexpr (Element::needs_pairs) {
       for (int e = 0; e < model_.num_elements(); ++e)
         if (model_.elements()[e].slot == PairSlot::none)

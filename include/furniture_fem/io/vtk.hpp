@@ -81,19 +81,25 @@ inline void put_number(std::string& out, double v) {
   out.append(buf, r.ptr);
 }
 
-// Writes via "<path>.tmp" + rename; errors name the path.
+// Writes via "<path>.tmp" + rename; errors name the path. A failed write or rename removes the .tmp
+// file (a full disk left one behind per frame; issue 13).
 inline void write_atomically(const std::string& path, const std::string& text, const char* who) {
   const std::string tmp = path + ".tmp";
+  const auto fail = [&](const std::string& what) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw OutputError(std::string(who) + ": " + what);
+  };
   {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw OutputError(std::string(who) + ": cannot open '" + tmp + "' for writing");
+    if (!f) fail("cannot open '" + tmp + "' for writing");
     f.write(text.data(), std::streamsize(text.size()));
     f.close();
-    if (!f) throw OutputError(std::string(who) + ": error while writing '" + tmp + "'");
+    if (!f) fail("error while writing '" + tmp + "' (disk full?)");
   }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
-  if (ec) throw OutputError(std::string(who) + ": cannot rename '" + tmp + "' to '" + path + "': " + ec.message());
+  if (ec) fail("cannot rename '" + tmp + "' to '" + path + "': " + ec.message());
 }
 
 inline void check_field(const LineMesh::Field& f, std::size_t count, const char* where, const std::string& path) {

@@ -309,6 +309,7 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
   r.positive("duration");
   s.dt = r.number("dt", s.dt);
   r.positive("dt");
+  if (r.has("dt")) r.require(s.dt >= SceneSpec::min_dt, "dt", "must be at least " + detail::fmt(SceneSpec::min_dt) + " s");
   if (r.has("dt")) r.require(s.dt <= s.duration, "dt", "must not exceed duration (" + detail::fmt(s.duration) + " s)");
 
   if (r.has("outputs")) {

@@ -49,11 +49,21 @@ inline Record scene_record(const SceneSpec& s, const std::string& file, const ch
   return read_record(path, f, ro);
 }
 
-// Window, low-pass and scale one component; the run's time 0 is the window's start.
-inline Record process_record(Record r, const GroundMotionSpec& g) {
+// Window, low-pass and scale one component; the run's time 0 is the window's start. A window that
+// holds fewer than two samples of the record names its key, the record and its span.
+inline Record process_record(Record r, const SceneSpec& s) {
+  const GroundMotionSpec& g = s.ground_motion;
   if (g.lowpass_hz > 0 && g.lowpass_hz < 0.5 / r.dt) r = low_pass(r, g.lowpass_hz);
   const double t0 = std::max(g.window_start, r.t0);
   const double t1 = g.window_end ? std::min(*g.window_end, r.t_end()) : r.t_end();
+  // The samples window() keeps (within 1e-6 dt of a bound counts as inside).
+  const double first = std::ceil((t0 - r.t0) / r.dt - 1e-6), last = std::floor((t1 - r.t0) / r.dt + 1e-6);
+  if (!(last - first >= 1)) {
+    const bool late = !g.window_end || g.window_start > r.t_end() - r.dt;
+    throw InputError(s.source, 0, late ? "ground_motion.window.start" : "ground_motion.window.end",
+                     fmt(late ? g.window_start : *g.window_end) + " s leaves fewer than two samples of record '" +
+                         r.name + "' (" + r.source + "), which spans [" + fmt(r.t0) + ", " + fmt(r.t_end()) + "] s");
+  }
   if (t0 > 0 || t1 < r.t_end()) r = window(r, t0, t1, 0.0);
   r.t0 = 0;
   return r.scaled(g.level);
@@ -87,14 +97,14 @@ inline TableMotion scene_table_motion(const SceneSpec& s) {
   if (g.format == RecordFormat::jma_csv) {
     ReadOptions ro;
     const auto c = read_jma_csv(s.resolve(g.file_x));
-    if (!three_d) return TableMotion::one_d(detail::process_record(c[0], g));
-    return TableMotion::three_d(detail::process_record(c[0], g), detail::process_record(c[1], g),
-                                detail::process_record(c[2], g));
+    if (!three_d) return TableMotion::one_d(detail::process_record(c[0], s));
+    return TableMotion::three_d(detail::process_record(c[0], s), detail::process_record(c[1], s),
+                                detail::process_record(c[2], s));
   }
-  Record x = detail::process_record(detail::scene_record(s, g.file_x, "x"), g);
+  Record x = detail::process_record(detail::scene_record(s, g.file_x, "x"), s);
   if (!three_d) return TableMotion::one_d(std::move(x));
-  Record y = detail::process_record(detail::scene_record(s, g.file_y, "y"), g);
-  Record z = detail::process_record(detail::scene_record(s, g.file_z, "z"), g);
+  Record y = detail::process_record(detail::scene_record(s, g.file_y, "y"), s);
+  Record z = detail::process_record(detail::scene_record(s, g.file_z, "z"), s);
   return TableMotion::three_d(std::move(x), std::move(y), std::move(z));
 }
 
@@ -273,6 +283,60 @@ inline std::string energy_loss_warning(const EnergyLedger& E, double dt, double 
   return o.str();
 }
 
+namespace detail {
+
+// Obstacles and their meshes must stay this close to the table's centre (m, each coordinate): a room
+// is metres across, and far beyond it the triangles' areas and the contact distances are lost to
+// rounding (a mesh with a coordinate of 1e166, a scale of 1e300 or a position of 1e300 ran or failed
+// with a message naming no key; issue 13).
+inline constexpr double obstacle_reach = 1e4;
+
+// The mesh of obstacles[i], placed (ObstacleSpec: file units times `scale`, turned by `yaw_deg` about z,
+// the file's origin moved to `position`). A vertex beyond obstacle_reach of the table's centre is an
+// InputError naming the key to blame: `position` when it alone is out of reach, `file` when the file's
+// own coordinate is, `scale` when the scaled coordinate is.
+inline TriangleMesh placed_obstacle_mesh(const SceneSpec& spec, std::size_t i) {
+  const ObstacleSpec& ob = spec.obstacles[i];
+  const std::string key = "obstacles[" + std::to_string(i) + "]";
+  const std::string path = spec.resolve(ob.file);
+  const Vec3 centre(0, 0, spec.table.floor_z);
+  const auto out_of_reach = [](const Vec3& v) { return !(v.cwiseAbs().maxCoeff() <= obstacle_reach); };
+  const auto fail = [&](const std::string& field, const std::string& message) {
+    throw InputError(spec.source, 0, key + "." + field,
+                     message + "; an obstacle must lie within " + fmt(obstacle_reach) + " m of the table's centre");
+  };
+  const auto vec = [](const Vec3& v) { return "[" + fmt(v.x()) + ", " + fmt(v.y()) + ", " + fmt(v.z()) + "]"; };
+  if (out_of_reach(ob.position - centre)) fail("position", "out of reach (got " + vec(ob.position) + ")");
+  TriangleMesh mesh = read_triangle_mesh(path);
+  const Mat3 R = Eigen::AngleAxisd(ob.yaw_deg * std::numbers::pi / 180.0, Vec3::UnitZ()).toRotationMatrix();
+  for (std::size_t k = 0; k < mesh.vertices.size(); ++k) {
+    Vec3& v = mesh.vertices[k];
+    const Vec3 scaled = ob.scale * v, placed = R * scaled + ob.position;
+    if (!out_of_reach(placed - centre)) {
+      v = placed;
+      continue;
+    }
+    const std::string vertex = "vertex " + std::to_string(k + 1) + " of \"" + path + "\", " + vec(v) + ",";
+    if (out_of_reach(v)) fail("file", vertex + " is out of reach");
+    if (out_of_reach(scaled)) fail("scale", fmt(ob.scale) + " puts " + vertex + " at " + vec(scaled) + ", out of reach");
+    fail("position", vec(ob.position) + " puts " + vertex + " at " + vec(placed) + ", out of reach");
+  }
+  return mesh;
+}
+
+// obstacles[i] as a rigid obstacle; a mesh left without a triangle of non-zero area names the key.
+inline MeshObstacle scene_obstacle(const SceneSpec& spec, std::size_t i) {
+  const ObstacleSpec& ob = spec.obstacles[i];
+  try {
+    return MeshObstacle(placed_obstacle_mesh(spec, i), spec.resolve(ob.file));
+  } catch (const ModelError& e) {
+    throw InputError(spec.source, 0, "obstacles[" + std::to_string(i) + "].file",
+                     e.what() + (ob.scale != 1 ? " at scale " + fmt(ob.scale) : std::string()));
+  }
+}
+
+}  // namespace detail
+
 // A scene turned into a composed solver: the model, its items, the table motion and the simulation
 // (owned here so the model outlives the simulation that refers to it). Fidelity per item: "rigid"
 // items are solved as rigid bodies; "auto" items are rigid unless the scene asks for their sectional
@@ -294,14 +358,8 @@ struct SceneSimulation {
     items = build_scene(spec, *model);
     motion = scene_table_motion(spec);
     RoomContact<Law> contact(*model, scene_body_contacts(spec, *model, items), scene_planes(spec));
-    // Obstacle placement (ObstacleSpec): file units times `scale`, turned by `yaw_deg` about z, the
-    // file's origin moved to `position`.
-    for (const auto& ob : spec.obstacles) {
-      TriangleMesh mesh = read_triangle_mesh(spec.resolve(ob.file));
-      const Mat3 R = Eigen::AngleAxisd(ob.yaw_deg * std::numbers::pi / 180.0, Vec3::UnitZ()).toRotationMatrix();
-      for (Vec3& v : mesh.vertices) v = R * (ob.scale * v) + ob.position;
-      contact.add_obstacle(MeshObstacle(std::move(mesh), spec.resolve(ob.file)));
-    }
+    for (std::size_t i = 0; i < spec.obstacles.size(); ++i)
+      contact.add_obstacle(detail::scene_obstacle(spec, i));
     switch (spec.integrator.scheme) {
       case IntegratorKind::paper_newmark: integrator = RuntimeIntegrator::from(Newmark::paper()); break;
       case IntegratorKind::average_acceleration:

@@ -177,7 +177,10 @@ struct SceneSpec {
     return static_cast<int>(std::clamp(std::round(refresh_every / dt), 1.0, 1e9));
   }
   double duration = 10.0;  // s
-  double dt = 1e-3;        // s (the paper's 1 ms)
+  double dt = 1e-3;        // s (the paper's 1 ms); at least min_dt
+  // The shortest time step a scene may ask for: a thousandth of the paper's (the stiffest penalties'
+  // stable steps are around 0.1 ms). dt = 1e-300 was accepted and then "diverged; try a smaller dt".
+  static constexpr double min_dt = 1e-6;
   OutputSpec outputs;
   // Not part of the file: where it came from (error messages) and the folder relative paths are read from.
   std::string source = "<scene>";

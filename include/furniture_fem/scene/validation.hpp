@@ -130,9 +130,9 @@ inline void validate(const SceneSpec& s) {
     throw InputError(s.source, 0, path, message);
   };
   const auto item_label = [&](size_t i) { return "item '" + s.items[i].name + "'"; };
-  if (!(s.dt > 0) || !(s.duration > 0) || s.dt > s.duration)
-    fail("dt", "must be positive and not exceed duration (dt = " + detail::fmt(s.dt) +
-                   " s, duration = " + detail::fmt(s.duration) + " s)");
+  if (!(s.dt >= SceneSpec::min_dt) || !(s.duration > 0) || s.dt > s.duration)
+    fail("dt", "must be at least " + detail::fmt(SceneSpec::min_dt) + " s and not exceed duration (dt = " +
+                   detail::fmt(s.dt) + " s, duration = " + detail::fmt(s.duration) + " s)");
   if (s.ground_motion.level < 0) fail("ground_motion.level", "must not be negative (got " + detail::fmt(s.ground_motion.level) + ")");
   if (s.items.empty()) fail("items", "a scene needs at least one item");
 
