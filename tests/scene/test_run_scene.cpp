@@ -769,3 +769,65 @@ TEST_CASE("RunOptions::output_interval is a time, rounded to whole steps", "[run
     }
   }
 }
+
+TEST_CASE("a run that diverges to NaN ends as 'diverged' with its last finite state and the time it diverged",
+          "[runner][errors]") {
+  // Issue 13: the final states were taken from the diverged (NaN) state and read "overturned, tilt 90,
+  // lift 999999999.975 m" (std::min(1e9, NaN) is 1e9). A floor spring of 1e12 N/m against 5 ms steps,
+  // applied explicitly, multiplies a node's penetration by about dt^2 k / m = 1e8 per step: the state
+  // overflows within some 40 steps (measured before the fix: "overturned, tilt 135 deg, slide 1e154 m",
+  // energy imbalance NaN, after 42 steps). The energy check, which would stop it earlier, is off.
+  const std::string out = fresh_dir("diverged_nan");
+  const SceneSpec s = parse_scene_json(json::parse(R"({
+    "name": "diverging",
+    "items": [{"kind": "side_table", "fidelity": "full"}],
+    "ground_motion": {"source": "synthetic", "seed": 3, "pga": 1.0},
+    "contact": {"law": "spring_dashpot", "implicit": "none", "floor": {"stiffness": 1e12}},
+    "duration": 1.0,
+    "dt": 0.005
+  })"),
+                                       "diverging.json");
+  RunOptions opt = quiet(out);
+  opt.energy_creation_limit = 0;
+  opt.figures = true;
+  const RunSummary sum = run_scene(s, opt);
+  INFO(sum.diagnosis);
+  REQUIRE(sum.status == "diverged");
+  CHECK_THAT(sum.diagnosis, Catch::Contains("non-finite") || Catch::Contains("not finite"));
+  // The run ends at its last finite step; the step after it diverged.
+  CHECK(sum.t_end < s.duration);
+  CHECK(sum.steps == std::lround(sum.t_end / s.dt));
+  REQUIRE(sum.t_diverged);
+  CHECK(*sum.t_diverged == Approx(sum.t_end + s.dt).margin(1e-12));
+  REQUIRE(sum.items.size() == 1);
+  const ItemFinalState& it = sum.items[0];
+  CHECK(it.state == "diverged");
+  CHECK(std::isfinite(it.slide));
+  CHECK(std::isfinite(it.tilt_deg));
+  CHECK(std::isfinite(it.max_tilt_deg));
+  CHECK(std::isfinite(it.lift));
+  CHECK(it.lift != Approx(1e9).epsilon(1e-6));
+  CHECK(it.cog_displacement.allFinite());
+  CHECK(std::isfinite(sum.energy_imbalance));
+  // The files say the same, with numbers (nlohmann::json writes NaN as null).
+  const json fin = read_json(out + "/final_state.json");
+  CHECK(fin.at(0).at("state") == "diverged");
+  for (const char* key : {"slide_m", "tilt_deg", "max_tilt_deg", "lift_m"}) CHECK(fin.at(0).at(key).is_number());
+  const json summary = read_json(out + "/summary.json");
+  CHECK(summary.at("status") == "diverged");
+  CHECK(summary.at("t_end_s").get<double>() == sum.t_end);
+  CHECK(summary.at("t_diverged_s").get<double>() == *sum.t_diverged);
+  CHECK(summary.at("energy_imbalance_relative").is_number());
+  CHECK(fs::exists(out + "/room_final.png"));
+}
+
+TEST_CASE("a completed run has no divergence time", "[runner][errors]") {
+  const std::string out = fresh_dir("not_diverged");
+  SceneSpec s = parse_scene_json(small_scene_json(out), "small.json");
+  s.duration = 0.02;
+  const RunSummary sum = run_scene(s, quiet(out));
+  REQUIRE(sum.status == "completed");
+  CHECK_FALSE(sum.t_diverged);
+  CHECK(read_json(out + "/summary.json").at("t_diverged_s").is_null());
+  for (const auto& it : sum.items) CHECK(it.state != "diverged");
+}
