@@ -34,6 +34,7 @@
 #include <iterator>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <span>
 #include <sstream>
 #include <string>
@@ -498,6 +499,7 @@ struct CgalMeshTree {
   std::vector<Triangle> triangles;  // the tree points into this vector: never resized after build
   std::vector<int> source;          // index of each kept triangle in the input mesh
   Tree tree;
+  CGAL::Bbox_3 box;                 // of the whole mesh
 
   static Point point(const Vec3& p) { return Point(p.x(), p.y(), p.z()); }
   static Vec3 vec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
@@ -543,6 +545,7 @@ class MeshObstacle {
     if (t->triangles.empty()) throw ModelError("mesh '" + name_ + "': no triangle of non-zero area");
     t->tree.rebuild(t->triangles.begin(), t->triangles.end());
     t->tree.accelerate_distance_queries();
+    t->box = t->tree.bbox();
     mesh_ = std::move(mesh);
     tree_ = std::move(t);
   }
@@ -561,6 +564,18 @@ class MeshObstacle {
     c.triangle = tree_->source[k];
     const auto& tri = mesh_.triangles[c.triangle];
     c.n_W = (mesh_.vertices[tri[1]] - mesh_.vertices[tri[0]]).cross(mesh_.vertices[tri[2]] - mesh_.vertices[tri[0]]).normalized();
+    return c;
+  }
+
+  // The point of the mesh nearest to Q if one lies within distance d of Q; nothing otherwise. Cheap for
+  // a point far from the mesh: the box of half-width d around Q is tested against the mesh's box, then
+  // against the tree's triangles (a triangle within d of Q meets that box), before any closest-point
+  // search (whose cost grows with the distance: a far query visits most of the tree).
+  std::optional<MeshClosestPoint> closest_within(const Vec3& p_WQ, double d) const {
+    const CGAL::Bbox_3 box(p_WQ.x() - d, p_WQ.y() - d, p_WQ.z() - d, p_WQ.x() + d, p_WQ.y() + d, p_WQ.z() + d);
+    if (!CGAL::do_overlap(box, tree_->box) || !tree_->tree.do_intersect(box)) return std::nullopt;
+    MeshClosestPoint c = closest(p_WQ);
+    if (!(c.distance <= d)) return std::nullopt;
     return c;
   }
 

@@ -54,9 +54,10 @@ struct RunOptions {
 
 struct ItemFinalState {
   std::string name;
-  std::string state;          // standing, slid, tilted, fell, overturned, resting_on_item
+  std::string state;          // standing, slid, tilted, fell, overturned, resting_on_item, diverged
                               // (fell: upright again at the end, but it tipped past 60 degrees or came
-                              // down more than 5 cm on the way, e.g. off the item it stood on)
+                              // down more than 5 cm on the way, e.g. off the item it stood on; diverged:
+                              // the run diverged, the numbers are those of its last finite step)
   double slide = 0;           // horizontal displacement of the centre of gravity (m)
   double tilt_deg = 0;        // angle of the item's vertical axis from the vertical
   double max_tilt_deg = 0;    // during the run
@@ -75,7 +76,9 @@ struct SectionForcePeak {
 struct RunSummary {
   std::string status = "completed";  // completed, stopped, diverged
   std::string diagnosis;             // why it stopped; for a completed run, empty or an energy-loss warning
+  // t_end: the time reached (s); of a diverged run, its last finite step, the one final states are of.
   double t_end = 0, duration = 0;
+  std::optional<double> t_diverged;  // a diverged run: the end of the step that diverged (s)
   long steps = 0;
   double wall_seconds = 0;
   double energy_imbalance = 0;        // |imbalance| / scale of the ledger at the end

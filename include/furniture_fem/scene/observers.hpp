@@ -156,7 +156,10 @@ class FinalStates : public RunObserver {
       settle_steps_ = 1;
       add_item_forces(run.sim.pair_forces());
     }
-    for (const auto& it : run.items) summary.items.push_back(final_state(run, it));
+    for (const auto& it : run.items) {
+      summary.items.push_back(final_state(run, it));
+      if (summary.status == "diverged") summary.items.back().state = "diverged";
+    }
   }
 
  private:
@@ -403,6 +406,7 @@ class SummaryFile : public RunObserver {
         {"status", sum.status},
         {"diagnosis", sum.diagnosis},
         {"t_end_s", sum.t_end},
+        {"t_diverged_s", sum.t_diverged ? nlohmann::json(*sum.t_diverged) : nlohmann::json()},
         {"duration_s", sum.duration},
         {"steps", sum.steps},
         {"dt_s", run.spec.dt},

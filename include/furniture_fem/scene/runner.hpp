@@ -15,6 +15,8 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "observer.hpp"
@@ -93,9 +95,81 @@ struct ComposedScene {
   SteppedSimulation& sim;
 };
 
+// The state after the last step the observers saw, copied by the runner after every step: what the
+// observers' end() see of a run that diverged, whose simulation may by then hold NaN (its final
+// state read "overturned, tilt 90, lift 999999999.975 m"; issue 13). Positions, displacements,
+// rotations, velocities, the pair forces and the requested sections' forces are copies; energy() is
+// the ledger of the last history row that passed the energy check; the rest is the live simulation's.
+class LastStepView final : public SimulationView {
+ public:
+  LastStepView(const SimulationView& sim, const Model& model, const ResolvedOutputs& requests)
+      : sim_(sim), x_(model.num_nodes()), u_(model.num_nodes()), R_(model.num_nodes()), v_(model.num_nodes()) {
+    for (const auto& s : requests.sections) sections_.push_back({s.element, {}});
+  }
+  void capture() {
+    t_ = sim_.time();
+    steps_ = sim_.steps();
+    for (std::size_t n = 0; n < x_.size(); ++n) {
+      const int i = static_cast<int>(n);
+      x_[n] = sim_.position(i);
+      u_[n] = sim_.displacement(i);
+      R_[n] = sim_.rotation(i);
+      v_[n] = sim_.velocity(i);
+    }
+    pair_forces_ = sim_.pair_forces();
+    for (auto& [e, f] : sections_) f = sim_.section_forces(e);
+  }
+  void set_energy(const EnergyLedger& E) { energy_ = E; }
+  // The first node whose position, rotation or velocity in the live simulation is not finite; -1 if none.
+  int first_non_finite_node() const {
+    for (std::size_t n = 0; n < x_.size(); ++n) {
+      const int i = static_cast<int>(n);
+      if (!sim_.position(i).allFinite() || !sim_.rotation(i).allFinite() || !sim_.velocity(i).allFinite()) return i;
+    }
+    return -1;
+  }
+
+  double time() const override { return t_; }
+  long steps() const override { return steps_; }
+  const Vec3& position(int n) const override { return x_[n]; }
+  const Vec3& displacement(int n) const override { return u_[n]; }
+  const Mat3& rotation(int n) const override { return R_[n]; }
+  Vec6 velocity(int n) const override { return v_[n]; }
+  double nodal_mass(int n) const override { return sim_.nodal_mass(n); }
+  SectionForces section_forces(int e) const override {
+    for (const auto& [element, f] : sections_)
+      if (element == e) return f;
+    return sim_.section_forces(e);  // not a requested section: not copied
+  }
+  EnergyLedger energy() const override { return energy_; }
+  const std::vector<PairForce>& pair_forces() const override { return pair_forces_; }
+  long factorizations() const override { return sim_.factorizations(); }
+  const StepTimings& timings() const override { return sim_.timings(); }
+  std::string integrator_name() const override { return sim_.integrator_name(); }
+  std::string_view solver_name() const override { return sim_.solver_name(); }
+  std::string_view element_name() const override { return sim_.element_name(); }
+
+ private:
+  const SimulationView& sim_;
+  double t_ = 0;
+  long steps_ = 0;
+  std::vector<Vec3> x_, u_;
+  std::vector<Mat3> R_;
+  std::vector<Vec6> v_;
+  std::vector<PairForce> pair_forces_;
+  std::vector<std::pair<int, SectionForces>> sections_;
+  EnergyLedger energy_;
+};
+
 // The energy check at the history rows: a run creating energy ends as "diverged" before anything of
 // the row is written (energy_creation_diagnosis).
 inline void check_energy_creation(const RunView& run, const ContactStepEstimate& estimate) {
+  // A ledger that overflowed compares false with every limit: it would pass silently (even with the
+  // creation check off, a run whose energies are not finite is diverged).
+  const EnergyLedger& E = run.row_energy;
+  if (!std::isfinite(E.imbalance()) || !std::isfinite(E.scale()))
+    throw SimulationError(run.sim.time(), "the energy ledger is not finite (its kinetic energy, strain energy or a "
+                                          "work overflowed): the run diverged (try a smaller dt or a softer penalty)");
   const std::string why =
       energy_creation_diagnosis(run.row_energy, run.spec.dt, run.options.energy_creation_limit, estimate);
   if (!why.empty()) throw SimulationError(run.sim.time(), why);
@@ -135,6 +209,9 @@ inline RunSummary run_observed(const SceneSpec& spec, const RunOptions& opt, con
   observers.insert(observers.end(), extra.begin(), extra.end());
 
   for (RunObserver* o : observers) o->begin(run);
+  LastStepView last(sim, scene.model, requests);
+  last.capture();
+  EnergyLedger trusted = run.row_energy;  // the ledger of the last row that passed the energy check
   try {
     while (sim.time() < run.t_end - 0.5 * spec.dt) {
       if (opt.stop && opt.stop->load()) {
@@ -143,27 +220,44 @@ inline RunSummary run_observed(const SceneSpec& spec, const RunOptions& opt, con
         break;
       }
       const StepInfo step = sim.step();
+      // A step can end with an overflow the solver's own checks miss (a finite increment that takes a
+      // position to infinity): no observer sees such a state, the run ends at the step before.
+      if (const int n = last.first_non_finite_node(); n >= 0)
+        throw SimulationError(sim.time(), "node " + std::to_string(n) + " of body '" +
+                                              scene.model.body(scene.model.node(n).body).name +
+                                              "' has a non-finite position, rotation or velocity after the step: "
+                                              "the step diverged (try a smaller dt or a softer penalty)");
       if (run.row_due()) {
         run.row_energy = sim.energy();
         check_energy_creation(run, estimate);
-        const EnergyLedger& E = run.row_energy;
-        sum.max_energy_imbalance = std::max(sum.max_energy_imbalance, std::abs(E.imbalance()) / E.scale());
+        trusted = run.row_energy;
+        sum.max_energy_imbalance = std::max(sum.max_energy_imbalance, std::abs(trusted.imbalance()) / trusted.scale());
       }
       for (RunObserver* o : observers) o->after_step(run, step);
+      last.capture();
     }
   } catch (const SimulationError& e) {
     sum.status = "diverged";
     sum.diagnosis = e.what();
   }
 
-  const EnergyLedger E = sim.energy();
+  // A diverged run ends at the last step the observers saw, with every item's state "diverged".
+  const bool diverged = sum.status == "diverged";
+  last.set_energy(trusted);
+  const SimulationView& end_state = diverged ? static_cast<const SimulationView&>(last) : sim;
+  const EnergyLedger E = diverged ? trusted : sim.energy();
   sum.energy_imbalance = std::abs(E.imbalance()) / E.scale();
   if (sum.status == "completed") sum.diagnosis = energy_loss_warning(E, spec.dt, opt.energy_loss_warning, estimate);
-  sum.t_end = sim.time();
-  sum.steps = sim.steps();
+  sum.t_end = end_state.time();
+  if (diverged) sum.t_diverged = last.time() + spec.dt;
+  sum.steps = end_state.steps();
   sum.factorizations = sim.factorizations();
   sum.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
-  for (RunObserver* o : observers) o->end(run, sum);
+  const RunView end_view{run.spec,      run.model,   run.items, run.motion,
+                         run.rigid_bodies, run.requests, end_state, run.options,
+                         run.out_dir,   run.t_end,   run.row_interval_steps, run.settle_from,
+                         diverged ? trusted : run.row_energy};
+  for (RunObserver* o : observers) o->end(end_view, sum);
   return sum;
 }
 
