@@ -36,7 +36,7 @@ inline Material elastic_steel() {
 
 // A rectangular box frame: 12 edges of tube, footprint bx (along X) by by (along Y), height h between
 // the bottom and top centre lines, footprint centre at `centre` (x, y), bottom centre lines at
-// z = 25 mm. With raise > 0 the two bottom edges along X are lifted by `raise` (the posts carry them),
+// z = 25 mm + centre.z (a box standing on another: centre.z = the lower box's h + 50 mm). With raise > 0 the two bottom edges along X are lifted by `raise` (the posts carry them),
 // so the box stands on its two bottom edges along Y only: every floor contact then lies on the lines
 // x = +-bx/2, the two rocking pivots.
 struct BoxSpec {
@@ -60,7 +60,7 @@ struct Box {
 inline Box add_box(Model& m, const std::string& name, int section, int material, const BoxSpec& s) {
   Box b;
   b.body = m.add_body(name);
-  const double z0 = tube_half_width, z1 = z0 + s.h, xr = 0.5 * s.bx, yr = 0.5 * s.by;
+  const double z0 = tube_half_width + s.centre.z(), z1 = z0 + s.h, xr = 0.5 * s.bx, yr = 0.5 * s.by;
   const Vec3 c(s.centre.x(), s.centre.y(), 0);
   auto node = [&](double x, double y, double z) { return m.add_node(c + Vec3(x, y, z), b.body); };
   const int b00 = node(-xr, -yr, z0), b10 = node(xr, -yr, z0), b11 = node(xr, yr, z0), b01 = node(-xr, yr, z0);

@@ -116,6 +116,7 @@ class RoomContact {
     plane_node_.assign(model.num_nodes(), 1);
     select_plane_nodes();
     support_.resize(bodies_.size());
+    rigid_.assign(bodies_.size(), 0);
     share_.assign(static_cast<size_t>(model.num_nodes()) * planes_.size(), 1.0);
     node_state_.assign(static_cast<size_t>(model.num_nodes()) * planes_.size(), ContactState{});
     node_trial_ = node_state_;
@@ -133,6 +134,7 @@ class RoomContact {
     if (support_.empty()) return;  // default-constructed: no bodies, nothing to test
     const auto& nodes = model.body(body).nodes;
     support_.at(body) = rigid ? detail::support_geometry(model, nodes) : detail::SupportGeometry{};
+    rigid_.at(body) = rigid;
     for (int n : nodes) plane_node_[n] = !rigid;
     for (int n : support_[body].vertices) plane_node_[n] = 1;
     select_plane_nodes();
@@ -157,6 +159,8 @@ class RoomContact {
     const Model& model = view.model;
     pair_forces_.clear();
     pair_trial_.clear();
+    pair_tangents_.clear();
+    implicit_pairs_.clear();
     active_ = 0;
     plane_contacts(view, f);
     timings_.planes += seconds_since(t_planes);
@@ -170,18 +174,37 @@ class RoomContact {
 
   // The linearisations of the floor and wall forces of the last add_forces (none unless implicit).
   const std::vector<NodalContactTangent>& nodal_tangents() const { return tangents_; }
+  // The linearisations of the item-item pairs between two rigid implicit bodies (the simulation
+  // solves such bodies together), of the last add_forces.
+  const std::vector<PairContactTangent>& pair_tangents() const { return pair_tangents_; }
 
   // Floor and wall forces again at the end state of a carried-over step: their forces of the last
   // evaluation are taken out of f and the new ones put in; the history to commit is the new one.
   // Bodies whose contact is explicit keep their predictor evaluation (forces, history, reported pairs).
+  // Item-item pairs solved inside the step are evaluated again too, for their history and the
+  // reported pair forces (their forces in f are not changed: the simulation carries their linearisation).
   void end_of_step(const ContactView& view, Eigen::VectorXd& f) {
-    if (!implicit || plane_applied_.empty()) return;
-    for (const auto& [n, force] : plane_applied_) f.template segment<3>(6 * n) -= force;
-    std::erase_if(pair_forces_, [&](const PairForce& pf) {
-      return (pf.body_b == floor_id || pf.body_b == wall_id) && bodies_[pf.body_a].implicit;
-    });
-    active_ -= static_cast<int>(plane_applied_.size());
-    plane_contacts(view, f, true);
+    if (!implicit) return;
+    if (!plane_applied_.empty()) {
+      for (const auto& [n, force] : plane_applied_) f.template segment<3>(6 * n) -= force;
+      std::erase_if(pair_forces_, [&](const PairForce& pf) {
+        return (pf.body_b == floor_id || pf.body_b == wall_id) && bodies_[pf.body_a].implicit;
+      });
+      active_ -= static_cast<int>(plane_applied_.size());
+      plane_contacts(view, f, true);
+    }
+    for (const auto& ip : implicit_pairs_) {
+      const auto& A = view.model.elements()[ip.ea];
+      const auto& B = view.model.elements()[ip.eb];
+      add_pair_force(std::min(A.body, B.body), std::max(A.body, B.body), -ip.reported);
+      ContactState st = committed_pair_state(ip.ea, ip.eb);
+      const auto nf = evaluate_segment_pair(law_, segment_pair(view, ip.ea, ip.eb), pair_params(view.model, ip.ea, ip.eb), st);
+      if (pair_history_) {
+        if (nf.in_contact) pair_trial_[key(ip.ea, ip.eb)] = st;
+        else pair_trial_.erase(key(ip.ea, ip.eb));
+      }
+      add_pair_force(std::min(A.body, B.body), std::max(A.body, B.body), reported_pair_force(A.body, B.body, nf));
+    }
   }
 
   void commit() {
@@ -326,28 +349,16 @@ class RoomContact {
     for (const auto& [ea, eb] : candidates_) {
       const auto& A = model.elements()[ea];
       const auto& B = model.elements()[eb];
-      const double L = 0.5 * (model.section_of(ea).contact_width() + model.section_of(eb).contact_width());
-      SegmentPair sp;
-      sp.a0 = view.x[A.n1];
-      sp.a1 = view.x[A.n2];
-      sp.b0 = view.x[B.n1];
-      sp.b1 = view.x[B.n2];
-      sp.va0 = view.v.template segment<3>(6 * A.n1);
-      sp.va1 = view.v.template segment<3>(6 * A.n2);
-      sp.vb0 = view.v.template segment<3>(6 * B.n1);
-      sp.vb1 = view.v.template segment<3>(6 * B.n2);
-      sp.L = L;
-      sp.dt = view.dt;
-      const ContactParams prm = mean_params(bodies_[A.body].item, bodies_[B.body].item);
-      // Only laws with a history (a tangential spring) keep per-pair state across steps.
-      ContactState st;
-      if (pair_history_) {
-        const auto it = pair_state_.find(key(ea, eb));
-        if (it != pair_state_.end()) st = it->second;
-      }
-      const auto nf = evaluate_segment_pair(law_, sp, prm, st);
+      ContactState st = committed_pair_state(ea, eb);
+      const auto nf = evaluate_segment_pair(law_, segment_pair(view, ea, eb), pair_params(model, ea, eb), st);
       if (pair_history_ && nf.in_contact) pair_trial_[key(ea, eb)] = st;
       if (!nf.in_contact) continue;
+      if (implicit && rigid_[A.body] && rigid_[B.body] && bodies_[A.body].implicit && bodies_[B.body].implicit) {
+        const auto& c = nf.closest;
+        pair_tangents_.push_back({A.body, B.body, A.n1, A.n2, B.n1, B.n2, c.s, c.t, 0.5 * (c.p_WA + c.p_WB),
+                                  nf.force.K, nf.force.C, c.p_WA - c.p_WB, nf.kinematics.v});
+        implicit_pairs_.push_back({ea, eb, reported_pair_force(A.body, B.body, nf)});
+      }
       f.template segment<3>(6 * A.n1) += nf.on_a0;
       f.template segment<3>(6 * A.n2) += nf.on_a1;
       f.template segment<3>(6 * B.n1) += nf.on_b0;
@@ -358,10 +369,41 @@ class RoomContact {
       f.template segment<3>(6 * A.n2 + 3) += nf.moment_a1;
       f.template segment<3>(6 * B.n1 + 3) += nf.moment_b0;
       f.template segment<3>(6 * B.n2 + 3) += nf.moment_b1;
-      add_pair_force(std::min(A.body, B.body), std::max(A.body, B.body),
-                     A.body < B.body ? Vec3(nf.on_a0 + nf.on_a1) : Vec3(nf.on_b0 + nf.on_b1));
+      add_pair_force(std::min(A.body, B.body), std::max(A.body, B.body), reported_pair_force(A.body, B.body, nf));
       ++active_;
     }
+  }
+
+  // The segment pair of elements ea (A) and eb (B) in the view's state; L is the mean member width.
+  static SegmentPair segment_pair(const ContactView& view, int ea, int eb) {
+    const Model& model = view.model;
+    const auto& A = model.elements()[ea];
+    const auto& B = model.elements()[eb];
+    SegmentPair sp;
+    sp.a0 = view.x[A.n1];
+    sp.a1 = view.x[A.n2];
+    sp.b0 = view.x[B.n1];
+    sp.b1 = view.x[B.n2];
+    sp.va0 = view.v.template segment<3>(6 * A.n1);
+    sp.va1 = view.v.template segment<3>(6 * A.n2);
+    sp.vb0 = view.v.template segment<3>(6 * B.n1);
+    sp.vb1 = view.v.template segment<3>(6 * B.n2);
+    sp.L = 0.5 * (model.section_of(ea).contact_width() + model.section_of(eb).contact_width());
+    sp.dt = view.dt;
+    return sp;
+  }
+  ContactParams pair_params(const Model& model, int ea, int eb) const {
+    return mean_params(bodies_[model.elements()[ea].body].item, bodies_[model.elements()[eb].body].item);
+  }
+  // Only laws with a history (a tangential spring) keep per-pair state across steps.
+  ContactState committed_pair_state(int ea, int eb) const {
+    if (!pair_history_) return {};
+    const auto it = pair_state_.find(key(ea, eb));
+    return it != pair_state_.end() ? it->second : ContactState{};
+  }
+  // The force a pair puts on the lower-numbered of its two bodies.
+  static Vec3 reported_pair_force(int body_a, int body_b, const SegmentPairForces& nf) {
+    return body_a < body_b ? Vec3(nf.on_a0 + nf.on_a1) : Vec3(nf.on_b0 + nf.on_b1);
   }
 
   void obstacle_contacts(const ContactView& view, Eigen::VectorXd& f) {
@@ -423,6 +465,13 @@ class RoomContact {
   std::vector<std::pair<int, int>> candidates_;
   std::vector<PairForce> pair_forces_;
   std::vector<NodalContactTangent> tangents_;
+  std::vector<PairContactTangent> pair_tangents_;
+  struct ImplicitPair {
+    int ea, eb;
+    Vec3 reported;  // its share of pair_forces_ at the evaluation
+  };
+  std::vector<ImplicitPair> implicit_pairs_;  // the pairs behind pair_tangents_
+  std::vector<char> rigid_;                   // per body: set_rigid
   std::vector<std::pair<int, Vec3>> plane_applied_;  // the floor and wall forces of the last evaluation
   bool pair_history_ = false;
   std::vector<Vec3> x_broad_;  // node positions at the last broad phase

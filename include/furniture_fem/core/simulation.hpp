@@ -84,6 +84,27 @@ struct NodalContactTangent {
   Vec3 x = Vec3::Zero(), v = Vec3::Zero();
 };
 
+// The linearisation of an item-item contact force about the state it was evaluated at: the force F
+// acts on body_a at `point` and -F on body_b; the contact points move with their segments' nodes
+// (shares 1 - s, s on a0, a1 and 1 - t, t on b0, b1), and F(x + dx, v + dv) ~ F - K d - C d', d the
+// relative displacement of a's point from b's. When both bodies are rigid the simulation solves them
+// in one system with these terms (rigid groups); otherwise the force stays a load of the predictor.
+struct PairContactTangent {
+  int body_a = -1, body_b = -1;
+  int a0 = -1, a1 = -1, b0 = -1, b1 = -1;
+  double s = 0, t = 0;
+  Vec3 point = Vec3::Zero();
+  Mat3 K = Mat3::Zero(), C = Mat3::Zero();
+  Vec3 x = Vec3::Zero(), v = Vec3::Zero();  // relative position and velocity at the evaluation
+};
+
+// A contact policy whose item-item pairs offer their linearisation (pair_tangents(), of its last
+// add_forces). Its end_of_step must re-evaluate those pairs at the end state, as for planes.
+template <class C>
+concept PairTangentPolicy = requires(const C c) {
+  { c.pair_tangents() } -> std::convertible_to<const std::vector<PairContactTangent>&>;
+};
+
 // A contact policy with its forces inside the implicit step: the tangents of its last add_forces, and
 // end_of_step(view, f), which re-evaluates at the end of a carried-over step the forces it linearised
 // (updating f), as the internal forces are.
@@ -474,6 +495,10 @@ class Simulation {
   // the core's cache; a failed solve or a non-finite increment leaves it uncommitted (sum_bodies
   // reports it).
   void solve_and_commit_body(int b) {
+    if (const int g = group_of(b); g >= 0) {
+      if (groups_[g].front() == b) solve_and_commit_group(groups_[g]);
+      return;
+    }
     BodyStepSums& s = sums_[b];
     timed(s.solve, [&] { residual_body(systems_[b], fext1_, s.residual_num, s.residual_den); });
     if (!update_body(b, s, true)) return;
@@ -647,6 +672,117 @@ class Simulation {
         else bs.contact.push_back({local, k});
       }
     }
+    gather_rigid_groups();
+  }
+
+  // ---- item-item pairs inside the step: rigid groups ----
+  // Rigid bodies that touch each other through pairs with tangents are solved in one system (6 per
+  // body, coupled by the pairs' terms), so a stacked item rests on another as on the floor. Groups
+  // are rebuilt at every evaluation of the contact; a group's first (lowest) body solves it for all.
+  // Pairs with a flexible body stay loads of the predictor (docs/contact/implicit_contact.md).
+  int group_of(int b) const { return group_of_.empty() ? -1 : group_of_[b]; }
+
+  void gather_rigid_groups() {
+    groups_.clear();
+    group_pairs_.clear();
+    group_of_.clear();
+    pair_active_.clear();
+    if constexpr (PairTangentPolicy<Contact>) {
+      const auto& pairs = contact_.pair_tangents();
+      if (static_ || pairs.empty()) return;
+      const int nb = model_.num_bodies();
+      std::vector<int> root(nb);
+      for (int b = 0; b < nb; ++b) root[b] = b;
+      const auto find = [&](int b) {
+        while (root[b] != b) b = root[b] = root[root[b]];
+        return b;
+      };
+      pair_active_.assign(pairs.size(), 0);
+      for (size_t k = 0; k < pairs.size(); ++k) {
+        const auto& p = pairs[k];
+        if (p.body_a == p.body_b || !systems_[p.body_a].rigid || !systems_[p.body_b].rigid) continue;
+        pair_active_[k] = 1;
+        const int ra = find(p.body_a), rb = find(p.body_b);
+        if (ra != rb) root[std::max(ra, rb)] = std::min(ra, rb);
+      }
+      std::vector<int> group_of_root(nb, -1);
+      group_of_.assign(nb, -1);
+      for (size_t k = 0; k < pairs.size(); ++k) {
+        if (!pair_active_[k]) continue;
+        const int r = find(pairs[k].body_a);
+        if (group_of_root[r] < 0) {
+          group_of_root[r] = static_cast<int>(groups_.size());
+          groups_.emplace_back();
+          group_pairs_.emplace_back();
+        }
+        group_pairs_[group_of_root[r]].push_back(static_cast<int>(k));
+      }
+      for (int b = 0; b < nb; ++b)  // ascending: the lowest body of a group leads it
+        if (const int g = group_of_root[find(b)]; g >= 0) {
+          group_of_[b] = g;
+          groups_[g].push_back(b);
+        }
+    }
+  }
+
+  // The relative position and velocity of a pair's contact points (a's minus b's) now.
+  Vec3 pair_relative_position(const PairContactTangent& p) const {
+    return (1 - p.s) * x_[p.a0] + p.s * x_[p.a1] - ((1 - p.t) * x_[p.b0] + p.t * x_[p.b1]);
+  }
+  Vec3 pair_relative_velocity(const PairContactTangent& p) const {
+    const auto v = [&](int n) { return Vec3(v_.segment<3>(6 * n)); };
+    return (1 - p.s) * v(p.a0) + p.s * v(p.a1) - ((1 - p.t) * v(p.b0) + p.t * v(p.b1));
+  }
+  // A pair's linearised force now, less the force at its evaluation.
+  Vec3 pair_shift(const PairContactTangent& p) const {
+    return -(p.K * (pair_relative_position(p) - p.x) + p.C * (pair_relative_velocity(p) - p.v));
+  }
+  // Adds a pair force F (on a, -F on b) to the nodes as evaluate_segment_pair shares it: forces by
+  // the shares, and the moments that put it at the contact point; calls add(node, 6-vector).
+  template <class Add>
+  void share_pair_force(const PairContactTangent& p, const Vec3& F, Add&& add) const {
+    const Vec3 pa = (1 - p.s) * x_[p.a0] + p.s * x_[p.a1], pb = (1 - p.t) * x_[p.b0] + p.t * x_[p.b1];
+    const Vec3 ma = (p.point - pa).cross(F), mb = (p.point - pb).cross(-F);
+    Vec6 w;
+    const auto put = [&](int n, double share, const Vec3& f, const Vec3& m) {
+      w << share * f, share * m;
+      add(n, w);
+    };
+    put(p.a0, 1 - p.s, F, ma);
+    put(p.a1, p.s, F, ma);
+    put(p.b0, 1 - p.t, -F, mb);
+    put(p.b1, p.t, -F, mb);
+  }
+
+  // A group's step in carry-over mode: every member's residual, the joint solve, then each member
+  // placed, checked and committed (none is committed when one is not finite).
+  void solve_and_commit_group(const std::vector<int>& members) {
+    for (int m : members) {
+      BodyStepSums& s = sums_[m];
+      timed(s.solve, [&] { residual_body(systems_[m], fext1_, s.residual_num, s.residual_den); });
+    }
+    update_group(members);
+    if (opt_.check_finite) {
+      for (int m : members) {
+        BodyStepSums& s = sums_[m];
+        for (int n : systems_[m].nodes) s.not_finite = s.not_finite || !Du_.segment<6>(6 * n).allFinite();
+        if (s.not_finite) return;
+      }
+    }
+    for (int m : members) commit_body(m, sums_[m]);
+  }
+  // The joint solve of a group from its members' residuals (r_), and each member moved there.
+  void update_group(const std::vector<int>& members) {
+    timed(sums_[members.front()].solve, [&] { RigidBody::group_newton_step(*this, members); });
+    for (int m : members) {
+      auto& bs = systems_[m];
+      bs.needs_refresh = false;
+      bs.assembled = false;
+      timed(sums_[m].elements, [&] {
+        kinematics_body(m);
+        evaluate_body(m, bs.needs_refresh);
+      });
+    }
   }
 
   // The predictor's contact forces are evaluated at the velocity v_contact_ (a better guess of the
@@ -660,6 +796,15 @@ class Simulation {
         const int i = 6 * t.node;
         predictor_shift_[k] = -(t.K * (x_[t.node] - t.x) + t.C * (v_.segment<3>(i) - t.v));
         fc1_.segment<3>(i) += predictor_shift_[k];
+      }
+    }
+    if constexpr (PairTangentPolicy<Contact>) {
+      const auto& pairs = contact_.pair_tangents();
+      pair_predictor_shift_.assign(pairs.size(), Vec3::Zero());
+      for (size_t k = 0; k < pair_active_.size(); ++k) {
+        if (!pair_active_[k]) continue;
+        pair_predictor_shift_[k] = pair_shift(pairs[k]);
+        share_pair_force(pairs[k], pair_predictor_shift_[k], [&](int n, const Vec6& w) { fc1_.segment<6>(6 * n) += w; });
       }
     }
   }
@@ -679,6 +824,17 @@ class Simulation {
         fc0_.segment<3>(i) += delta;
         fnet0_.segment<3>(i) += delta;
         ledger_.contact_work += 0.5 * Du_.segment<3>(i).dot(delta);
+      }
+      if constexpr (PairTangentPolicy<Contact>) {
+        const auto& pairs = contact_.pair_tangents();
+        for (size_t k = 0; k < pair_active_.size(); ++k) {
+          if (!pair_active_[k]) continue;
+          share_pair_force(pairs[k], pair_shift(pairs[k]) - pair_predictor_shift_[k], [&](int n, const Vec6& w) {
+            fc0_.segment<6>(6 * n) += w;
+            fnet0_.segment<6>(6 * n) += w;
+            ledger_.contact_work += 0.5 * Du_.segment<6>(6 * n).dot(w);
+          });
+        }
       }
       contact_delta_.setZero();
       const ContactView view{model_, x_, v_, t_state_, opt_.dt};
@@ -928,6 +1084,10 @@ class Simulation {
   // of a step the rigid part of the increment put on the finite rotation, then the nodes moved and the
   // element forces evaluated there. False when the solve failed.
   bool update_body(int b, BodyStepSums& s, bool first_solve) {
+    if (const int g = group_of(b); g >= 0) {
+      if (groups_[g].front() == b) update_group(groups_[g]);
+      return true;
+    }
     timed(s.solve, [&] {
       solve_body(b, s);
       if (first_solve && opt_.finite_rotation_update && !s.solve_failed && !systems_[b].rigid)
@@ -1235,6 +1395,56 @@ class Simulation {
     // Nodal increments dx_n = dc + dtheta x r_n, rotations dtheta; the nodal residual and effective
     // mass reduced to 6 x 6 (T^T r, T^T M* T) and solved.
     static void newton_step(Simulation& sim, detail::BodySystem& bs) {
+      const ReducedSystem sys = reduced_system(sim, bs);
+      apply_increment(sim, bs, sys.A.ldlt().solve(sys.R));
+    }
+
+    // A group of rigid bodies joined by pairs (gather_rigid_groups): the members' 6 x 6 systems on the
+    // diagonal, and each pair's terms k = (1 - af) (K + gamma / (beta dt) C) through the motion of its
+    // contact point on each body, T = [I, -[point - c]x]: T_a^T k T_a, T_b^T k T_b, -T_a^T k T_b, -T_b^T k T_a.
+    static void group_newton_step(Simulation& sim, const std::vector<int>& members) {
+      const int n = static_cast<int>(members.size());
+      Eigen::MatrixXd A = Eigen::MatrixXd::Zero(6 * n, 6 * n);
+      Eigen::VectorXd R(6 * n);
+      std::vector<Vec3> centre(n);
+      for (int i = 0; i < n; ++i) {
+        const ReducedSystem sys = reduced_system(sim, sim.systems_[members[i]]);
+        A.template block<6, 6>(6 * i, 6 * i) = sys.A;
+        R.template segment<6>(6 * i) = sys.R;
+        centre[i] = sys.c;
+      }
+      if constexpr (PairTangentPolicy<Contact>) add_pair_terms(sim, members, centre, A);
+      const Eigen::VectorXd dq = A.partialPivLu().solve(R);
+      for (int i = 0; i < n; ++i) apply_increment(sim, sim.systems_[members[i]], dq.template segment<6>(6 * i));
+    }
+
+    static void add_pair_terms(const Simulation& sim, const std::vector<int>& members, const std::vector<Vec3>& centre,
+                               Eigen::MatrixXd& A) {
+      const auto index = [&](int body) {
+        return static_cast<int>(std::find(members.begin(), members.end(), body) - members.begin());
+      };
+      const double kf = 1 - sim.coef_.alpha_f, cf = sim.coef_.gamma / (sim.coef_.beta * sim.opt_.dt);
+      const auto& pairs = sim.contact_.pair_tangents();
+      for (int k : sim.group_pairs_[sim.group_of(members.front())]) {
+        const auto& p = pairs[k];
+        const int ia = index(p.body_a), ib = index(p.body_b);
+        const Mat3 kk = kf * (p.K + cf * p.C);
+        Eigen::Matrix<double, 3, 6> Ta, Tb;
+        Ta << Mat3::Identity(), -detail::skew(p.point - centre[ia]);
+        Tb << Mat3::Identity(), -detail::skew(p.point - centre[ib]);
+        A.template block<6, 6>(6 * ia, 6 * ia) += Ta.transpose() * kk * Ta;
+        A.template block<6, 6>(6 * ib, 6 * ib) += Tb.transpose() * kk * Tb;
+        A.template block<6, 6>(6 * ia, 6 * ib) -= Ta.transpose() * kk * Tb;
+        A.template block<6, 6>(6 * ib, 6 * ia) -= Tb.transpose() * kk * Ta;
+      }
+    }
+
+    struct ReducedSystem {
+      Eigen::Matrix<double, 6, 6> A;
+      Vec6 R;
+      Vec3 c;  // the mass centre the rotations are about
+    };
+    static ReducedSystem reduced_system(const Simulation& sim, const detail::BodySystem& bs) {
       const double mf = sim.coef_.mass_factor(sim.opt_.dt, sim.opt_.mass_damping);
       const auto& mass = sim.mass_;
       const auto& r_nodal = sim.r_;
@@ -1259,7 +1469,10 @@ class Simulation {
       if (!sim.static_) add_contact_terms(sim, bs, c, A);
       A.template block<3, 3>(3, 3) += mf * I;
       R6.template tail<3>() += anisotropic_inertia_moment(sim, bs);
-      const Vec6 dq = A.ldlt().solve(R6);
+      return {A, R6, c};
+    }
+    // The body moved by dq (its centre's translation, then its rotation) on top of the step's motion so far.
+    static void apply_increment(Simulation& sim, detail::BodySystem& bs, const Vec6& dq) {
       bs.rigid_dc += dq.template head<3>();
       bs.rigid_Q = detail::rotation_exp(dq.template tail<3>()) * bs.rigid_Q;
       const Vec3 rot = detail::rotation_log(bs.rigid_Q);
@@ -1364,6 +1577,11 @@ class Simulation {
   Eigen::VectorXd v_, a_, vn_, an_, v_contact_, Du_, r_, fint_, fext0_, fext1_, fc0_, fc1_, fnet0_, mass_, nodal_load_, fgrav_;
   Eigen::VectorXd contact_delta_;
   std::vector<Vec3> predictor_shift_;  // the linearised contact forces' shift from v_contact_ to v_ at the predictor
+  std::vector<Vec3> pair_predictor_shift_;    // the same for the pairs of rigid groups
+  std::vector<char> pair_active_;             // per pair tangent: inside a rigid group's solve
+  std::vector<std::vector<int>> groups_;      // rigid groups: their bodies, ascending
+  std::vector<std::vector<int>> group_pairs_; // each group's pair tangents
+  std::vector<int> group_of_;                 // per body: its group, or -1 (empty: no groups)
   std::vector<ElementProps> props_;
   std::vector<Mat3> E0_, frames_;
   std::vector<Vec12> d_, fl_;

@@ -134,8 +134,16 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
     }
     if (o.damping) p.c_lin = p.c_t = *o.damping;
   };
+  // Floor and wall contact inside the implicit step where the scene asks for it; friction sticks only
+  // there (a stick spring applied explicitly would be unstable). Two rigid implicit items also have
+  // their pairs inside the step (solved together); every other pair is explicit.
+  const auto implicit_for = [&](const auto& it) {
+    return s.contact.implicit == ImplicitContact::all ||
+           (s.contact.implicit == ImplicitContact::rigid && item_is_rigid(s, it));
+  };
   // The `stiff` law between items: one cap for the scene (the pair takes the mean of two items' values),
-  // from its lightest node (cap_for_explicit_pairs).
+  // from its lightest node (cap_for_explicit_pairs). Kept for rigid groups too: uncapped, the stiff
+  // dashpot's clamp makes a rigid stack chatter (docs/contact/implicit_contact.md, "Rigid groups").
   double lightest = std::numeric_limits<double>::infinity();
   if (s.contact.law == ContactLawKind::stiff)
     for (const auto& it : items) lightest = std::min(lightest, lightest_node_mass(model, it.body));
@@ -147,10 +155,7 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
     base.Dc = c.Dc;
     base.q = c.q;
     base.v_reg = s.contact.velocity_regularisation;
-    // Floor and wall contact inside the implicit step where the scene asks for it; friction sticks only
-    // there (a stick spring applied explicitly would be unstable).
-    bc.implicit = s.contact.implicit == ImplicitContact::all ||
-                  (s.contact.implicit == ImplicitContact::rigid && item_is_rigid(s, it));
+    bc.implicit = implicit_for(it);
     base.stick_length = s.contact.law == ContactLawKind::stick_slip || !bc.implicit ? 0.0 : s.contact.stick_length;
     // Linear and Hunt-Crossley springs get the paper penalty's stiffness at onset: alpha / L per
     // contact with L = 25 mm (half the 50 mm member width); the tangential spring of the stick-slip
