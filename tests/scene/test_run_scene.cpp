@@ -476,6 +476,10 @@ TEST_CASE("a stop request ends the run with status 'stopped' and readable output
     const json sum = check_outputs(out, spec, true);
     CHECK(sum.at("status") == "stopped");
     CHECK(sum.at("diagnosis") == s.diagnosis);
+    const json record = read_json(out + "/run.json");
+    CHECK(record.at("status") == "interrupted");
+    CHECK(record.at("summary_status") == "stopped");
+    CHECK(record.at("git_hash").is_null());  // RunOptions::git_hash empty: unknown
     CHECK(read_csv(out + "/markers.csv").rows() == 1);  // the initial state
   }
   SECTION("stop requested from another thread during the run") {
@@ -518,6 +522,7 @@ TEST_CASE("a stop request ends the run with status 'stopped' and readable output
     const json sum = check_outputs(out, spec, true);
     CHECK(sum.at("status") == "stopped");
     CHECK(sum.at("t_end_s").get<double>() == Approx(s.t_end));
+    CHECK(read_json(out + "/run.json").at("status") == "interrupted");
     const CsvTable m = read_csv(out + "/markers.csv");
     CHECK(m.rows() >= 4);
     CHECK(m.column("t").back() <= s.t_end + 1e-12);
@@ -859,6 +864,8 @@ TEST_CASE("a run that diverges to NaN ends as 'diverged' with its last finite st
   CHECK(summary.at("t_diverged_s").get<double>() == *sum.t_diverged);
   CHECK(summary.at("energy_imbalance_relative").is_number());
   CHECK(fs::exists(out + "/room_final.png"));
+  CHECK(read_json(out + "/run.json").at("status") == "diverged");
+  CHECK(read_json(out + "/run.json").at("diagnosis") == sum.diagnosis);
 }
 
 TEST_CASE("a completed run has no divergence time", "[runner][errors]") {
@@ -930,4 +937,167 @@ TEST_CASE("a large mesh obstacle far from every item costs little of the steps",
   CHECK(with.obstacles < 0.1 * steps_with);
   // Far from every item, the obstacle changes nothing.
   CHECK(x_with == x_none);
+}
+
+namespace {
+
+// The small scene, 20 steps, no figures: quick.
+SceneSpec quick_scene(const std::string& out) {
+  json j = small_scene_json(out);
+  j["duration"] = 0.02;
+  j["outputs"]["figures"] = false;
+  j["outputs"]["vtu_every"] = 10;
+  return parse_scene_json(j, "quick.json");
+}
+
+void touch(const std::string& path, const std::string& text = "x") {
+  fs::create_directories(fs::path(path).parent_path());
+  std::ofstream(path) << text;
+}
+
+}  // namespace
+
+TEST_CASE("results_file names the files a run writes, and no other", "[runner][results_folder]") {
+  for (const char* f : {"run.json", "run.json.tmp", "summary.json", "final_state.json", "markers.csv", "energy.csv",
+                        "sectional_forces.csv", "contact_forces.csv", "room.pvd", "room.pvd.tmp", "room_final.png",
+                        "marker_desk.top.png", "shear_0.png", "vtu/room_0.vtu", "vtu/room_120.vtu.tmp"}) {
+    INFO(f);
+    CHECK(results_file(f));
+  }
+  for (const char* f : {"notes.txt", "scene.json", "markers.csv.bak", "my.png", "vtu/mine.vtu", "vtu/x/room_1.vtu",
+                        "sub/marker_a.png", "sub/run.json", "run.json.old", "vtu"}) {
+    INFO(f);
+    CHECK_FALSE(results_file(f));
+  }
+  const std::regex iso(R"(\d{4}-\d{2}-\d{2}T\d{2}:\d{2}:\d{2}\.\d{3}Z)");
+  CHECK(std::regex_match(iso8601_utc(std::chrono::system_clock::now()), iso));
+  CHECK(iso8601_utc(std::chrono::system_clock::time_point{}) == "1970-01-01T00:00:00.000Z");
+  CHECK(iso8601_utc(std::chrono::system_clock::time_point{std::chrono::milliseconds(1764117222123)}) ==
+        "2025-11-26T00:33:42.123Z");
+}
+
+TEST_CASE("a run refuses a non-empty folder it did not write unless overwrite, and removes only its own old results",
+          "[runner][results_folder]") {
+  const std::string out = fresh_dir("policy");
+  const SceneSpec spec = quick_scene(out);
+  touch(out + "/notes.txt", "mine");
+  touch(out + "/vtu/mine.vtu", "mine");
+  touch(out + "/marker_old.png", "stale");
+  touch(out + "/vtu/room_99999.vtu", "stale");
+
+  // Refused, with the folder named and the way out; nothing on disk changed.
+  CHECK_THROWS_AS(run_scene(spec, quiet(out)), InputError);
+  CHECK_THROWS_WITH(run_scene(spec, quiet(out)), Catch::Contains("results folder '" + out + "'") &&
+                                                     Catch::Contains("not written by furniture_fem") &&
+                                                     Catch::Contains("--overwrite"));
+  CHECK(fs::exists(out + "/marker_old.png"));
+  CHECK_FALSE(fs::exists(out + "/run.json"));
+  CHECK_FALSE(fs::exists(out + "/summary.json"));
+  // A run that writes no files does not look at the folder.
+  RunOptions none = quiet(out);
+  none.write_files = false;
+  CHECK(run_scene(spec, none).status == "completed");
+
+  // --overwrite: the old results are removed first, the user's other files stay.
+  RunOptions o = quiet(out);
+  o.overwrite = true;
+  REQUIRE(run_scene(spec, o).status == "completed");
+  CHECK(fs::exists(out + "/notes.txt"));
+  CHECK(fs::exists(out + "/vtu/mine.vtu"));
+  CHECK_FALSE(fs::exists(out + "/marker_old.png"));
+  CHECK_FALSE(fs::exists(out + "/vtu/room_99999.vtu"));
+  CHECK(read_json(out + "/run.json").at("options").at("overwrite") == true);
+  check_outputs(out, spec, false);
+
+  // Now the folder is one a run wrote: the next run needs no overwrite, and clears what the last one left.
+  touch(out + "/shear_7.png", "stale");
+  touch(out + "/vtu/room_88888.vtu", "stale");
+  REQUIRE(run_scene(spec, quiet(out)).status == "completed");
+  CHECK_FALSE(fs::exists(out + "/shear_7.png"));
+  CHECK_FALSE(fs::exists(out + "/vtu/room_88888.vtu"));
+  CHECK(fs::exists(out + "/notes.txt"));
+  CHECK(fs::exists(out + "/vtu/mine.vtu"));
+  const json record = read_json(out + "/run.json");
+  for (const auto& f : record.at("files")) CHECK(results_file(f.get<std::string>()));
+  CHECK(record.at("files").back() == "run.json");
+
+  // A run.json saying "running" (a run still writing, or one killed): refused unless overwrite.
+  json running = record;
+  running["status"] = "running";
+  write_json(out + "/run.json", running);
+  CHECK_THROWS_WITH(run_scene(spec, quiet(out)), Catch::Contains("still writing") && Catch::Contains("--overwrite"));
+  REQUIRE(run_scene(spec, o).status == "completed");
+  CHECK(read_json(out + "/run.json").at("status") == "done");
+
+  // A file where the folder should be.
+  CHECK_THROWS_WITH(run_scene(spec, quiet(out + "/notes.txt")), Catch::Contains("is not a folder"));
+  // An empty folder, and a folder written before run.json existed (its summary.json names the version).
+  const std::string empty = fresh_dir("policy_empty");
+  fs::create_directories(empty);
+  CHECK(run_scene(spec, quiet(empty)).status == "completed");
+  const std::string legacy = fresh_dir("policy_legacy");
+  touch(legacy + "/summary.json", R"({"furniture_fem_version": "0.1.0"})");
+  touch(legacy + "/room_final.png", "stale");
+  REQUIRE(run_scene(spec, quiet(legacy)).status == "completed");
+  CHECK_FALSE(fs::exists(legacy + "/room_final.png"));
+}
+
+TEST_CASE("run.json is written first (running) and last (done, failed), atomically", "[runner][results_folder]") {
+  const std::string out = fresh_dir("record");
+  const SceneSpec spec = quick_scene(out);
+  // What the first observer sees at the start, and after the first step.
+  struct Peek : RunObserver {
+    json at_begin, at_step;
+    void begin(const RunView& run) override { at_begin = read_json(run.out_dir + "/run.json"); }
+    void after_step(const RunView& run, const StepInfo&) override {
+      if (run.sim.steps() == 1) at_step = read_json(run.out_dir + "/run.json");
+    }
+  } peek;
+  RunOptions o = quiet(out);
+  o.git_hash = "0123456789abcdef";
+  const auto before = std::chrono::system_clock::now();
+  const RunSummary s = run_scene(spec, o, {&peek});
+  REQUIRE(s.status == "completed");
+  const std::regex iso(R"(\d{4}-\d{2}-\d{2}T\d{2}:\d{2}:\d{2}\.\d{3}Z)");
+  for (const json* j : {&peek.at_begin, &peek.at_step}) {
+    CHECK(j->at("status") == "running");
+    CHECK(j->at("end_utc").is_null());
+    CHECK(j->at("wall_seconds").is_null());
+    CHECK(std::regex_match(j->at("start_utc").get<std::string>(), iso));
+    CHECK(j->at("scene") == to_json(spec));
+  }
+  const json r = read_json(out + "/run.json");
+  CHECK(r.at("program") == "furniture_fem");
+  CHECK(r.at("furniture_fem_version") == version_string);
+  CHECK(r.at("git_hash") == "0123456789abcdef");
+  CHECK(r.at("status") == "done");
+  CHECK(r.at("summary_status") == "completed");
+  CHECK(r.at("start_utc") == peek.at_begin.at("start_utc"));
+  CHECK(r.at("start_utc").get<std::string>() >= iso8601_utc(before - std::chrono::milliseconds(1)));
+  CHECK(std::regex_match(r.at("end_utc").get<std::string>(), iso));
+  CHECK(r.at("end_utc").get<std::string>() >= r.at("start_utc").get<std::string>());
+  CHECK(r.at("wall_seconds").get<double>() >= s.wall_seconds);
+  CHECK(r.at("out_dir") == out);
+  // The scene as run: the same as summary.json's, and it reads back as the same scene.
+  CHECK(r.at("scene") == read_json(out + "/summary.json").at("scene"));
+  CHECK(to_json(parse_scene_json(r.at("scene"), "run.json")) == r.at("scene"));
+  const std::set<std::string> files = r.at("files").get<std::set<std::string>>();
+  for (const char* f : {"run.json", "summary.json", "final_state.json", "markers.csv", "contact_forces.csv", "room.pvd",
+                        "vtu/room_0.vtu", "vtu/room_20.vtu"}) {
+    INFO(f);
+    CHECK(files.count(f) == 1);
+  }
+  CHECK_FALSE(fs::exists(out + "/run.json.tmp"));
+
+  // An exception leaving the run: run.json says "failed" and why, and the exception reaches the caller.
+  struct Thrower : RunObserver {
+    void after_step(const RunView& run, const StepInfo&) override {
+      if (run.sim.steps() == 5) throw std::runtime_error("observer gave up");
+    }
+  } thrower;
+  CHECK_THROWS_WITH(run_scene(spec, quiet(out), {&thrower}), "observer gave up");
+  const json failed = read_json(out + "/run.json");
+  CHECK(failed.at("status") == "failed");
+  CHECK(failed.at("error") == "observer gave up");
+  CHECK(failed.at("end_utc").is_string());
 }

@@ -32,6 +32,11 @@ inline constexpr const char* version_string = "0.1.0";
 
 struct RunOptions {
   std::string out_dir;                        // empty: the scene's outputs.folder
+  // A non-empty results folder that no run of this program wrote, or whose run.json says a run is still
+  // running, is refused (InputError); true: remove the old results in it (only the files a run writes,
+  // results_folder.hpp) and write. A folder a run wrote is always cleared of its old results first.
+  bool overwrite = false;
+  std::string git_hash;                       // written to run.json; empty: unknown (null)
   bool write_files = true;                    // false: no folder, no files, no figures; the summary only
   bool progress = true;                       // progress bar on stderr
   std::optional<double> duration;             // overrides the scene's duration (s)
