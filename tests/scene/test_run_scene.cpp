@@ -160,12 +160,24 @@ json check_outputs(const std::string& out, const SceneSpec& spec, bool expect_fi
                                                          "contact_work", "damping_work", "plastic_work", "imbalance"});
   // The first row is the state before any step: nothing has been gained or lost yet.
   CHECK(energy.column("imbalance").front() == 0.0);
-  check_csv(out + "/contact_forces.csv", {"body_a", "body_b", "fx", "fy", "fz"}, false);
   const json fin = read_json(out + "/final_state.json");
   REQUIRE(fin.is_array());
   std::size_t bodies = 0;
   for (const auto& it : spec.items) bodies += it.kind == ItemKind::separated_cabinets ? 2 : 1;
   CHECK(fin.size() == bodies);
+  // contact_forces.csv names the items: every item against the floor and the walls, every pair of items.
+  std::vector<std::string> contact_columns;
+  for (std::size_t a = 0; a < fin.size(); ++a) {
+    const std::string name = fin[a].at("item");
+    for (const char* c : {"_fx", "_fy", "_fz"}) {
+      contact_columns.push_back(name + "|floor" + c);
+      contact_columns.push_back(name + "|walls" + c);
+      for (std::size_t b = a + 1; b < fin.size(); ++b) contact_columns.push_back(name + "|" + fin[b].at("item").get<std::string>() + c);
+    }
+  }
+  const CsvTable contacts = check_csv(out + "/contact_forces.csv", contact_columns);
+  CHECK(contacts.columns().size() == 1 + contact_columns.size() + (spec.obstacles.empty() ? 0 : 3 * fin.size()));
+  CHECK(contacts.rows() == energy.rows());
   for (const auto& it : fin) {
     CHECK(it.at("item").is_string());
     CHECK(std::set<std::string>{"standing", "slid", "tilted", "fell", "overturned", "resting_on_item"}.count(
@@ -635,15 +647,18 @@ TEST_CASE("final states: an item on a slippery floor under a strong pulse slides
     // contact_forces.csv rows are means over the steps since the previous row: at rest they carry the
     // weights (Table 2: upper 21.3 kg, lower 28.8 kg). Rows of single steps read a phase of the
     // penalty contact's step-to-step alternation instead (a cabinet at rest showed -75 N from the floor).
+    // Columns by name: "<item>|<partner>_f?", the force on the item from the partner.
     const CsvTable cf = read_csv(dir + "/stacked_out/contact_forces.csv");
     double on_lower_from_upper = 0, on_lower_from_floor = 0;
     int n_pair = 0, n_floor = 0;
-    const auto &t = cf.column("t"), &body_a = cf.column("body_a"), &body_b = cf.column("body_b"), &fz = cf.column("fz");
+    const auto &t = cf.column("t"), &pair_fz = cf.column("pair/lower|pair/upper_fz"),
+               &floor_fz = cf.column("pair/lower|floor_fz");
+    CHECK_FALSE(cf.has("pair/upper|pair/lower_fz"));  // each pair once, the first item first
+    for (double f : cf.column("pair/upper|floor_fz")) CHECK(f == 0.0);  // the upper one never touches the floor
     for (std::size_t r = 0; r < cf.rows(); ++r) {
       if (t[r] < 0.15) continue;
-      const int a = static_cast<int>(body_a[r]), b = static_cast<int>(body_b[r]);
-      if (a == 0 && b == 1) on_lower_from_upper += fz[r], ++n_pair;
-      if (a == 0 && b == -1) on_lower_from_floor += fz[r], ++n_floor;
+      on_lower_from_upper += pair_fz[r], ++n_pair;
+      on_lower_from_floor += floor_fz[r], ++n_floor;
     }
     REQUIRE(n_pair > 10);
     REQUIRE(n_floor > 10);

@@ -327,36 +327,69 @@ class EnergyHistory : public RowHistory {
   }
 };
 
-// contact_forces.csv: one row per pair of bodies in contact and row time. Each pair's force is its
-// mean over the steps since the previous row: a penalty contact at rest chatters from one step to the
-// next, and single steps sampled one phase of it (a cabinet at rest showed -75 N from the floor). The
-// first rows are the initial state's forces.
+// contact_forces.csv: t, then three columns per pair of contact partners, named by the item and the
+// partner: "<item>|floor_fx", "<item>|walls_fx" (every wall together), "<item>|obstacles_fx" (every
+// mesh obstacle together; only when the scene has obstacles) and "<item>|<other item>_fx" for every
+// pair of items (the item first in the scene's order first), _fy, _fz likewise: the force on the first
+// from the second (N), 0 when they do not touch. Each is its mean over the steps since the previous
+// row: a penalty contact at rest chatters from one step to the next, and single steps sampled one
+// phase of it (a cabinet at rest showed -75 N from the floor). The first row is the initial state's.
 class ContactForceHistory : public RunObserver {
  public:
+  // The column prefix of every pair the contact model can report, in the order of the columns.
+  static std::vector<std::pair<std::pair<int, int>, std::string>> pairs(const RunView& run) {
+    std::vector<std::pair<std::pair<int, int>, std::string>> out;
+    const int nb = run.model.num_bodies();
+    const auto name = [&](int b) { return run.model.body(b).name; };
+    for (int a = 0; a < nb; ++a) out.push_back({{a, -1}, name(a) + "|floor"});
+    for (int a = 0; a < nb; ++a) out.push_back({{a, -2}, name(a) + "|walls"});
+    if (!run.spec.obstacles.empty())
+      for (int a = 0; a < nb; ++a) out.push_back({{a, -3}, name(a) + "|obstacles"});
+    for (int a = 0; a < nb; ++a)
+      for (int b = a + 1; b < nb; ++b) out.push_back({{a, b}, name(a) + "|" + name(b)});
+    return out;
+  }
   void begin(const RunView& run) override {
-    csv_.emplace(run.out_dir + "/contact_forces.csv", std::vector<std::string>{"t", "body_a", "body_b", "fx", "fy", "fz"});
-    const double t = run.sim.time();
-    for (const auto& pf : run.sim.pair_forces())
-      csv_->row({t, double(pf.body_a), double(pf.body_b), pf.force_on_a.x(), pf.force_on_a.y(), pf.force_on_a.z()});
+    std::vector<std::string> cols{"t"};
+    for (const auto& [pair, prefix] : pairs(run)) {
+      column_.emplace(pair, cols.size());
+      for (const char* c : {"_fx", "_fy", "_fz"}) cols.push_back(prefix + c);
+    }
+    row_.assign(cols.size(), 0.0);
+    csv_.emplace(run.out_dir + "/contact_forces.csv", cols);
+    for (const auto& pf : run.sim.pair_forces()) add(pf.body_a, pf.body_b, pf.force_on_a);
+    steps_ = 1;
+    write(run.sim.time());
   }
   void after_step(const RunView& run, const StepInfo&) override {
     ++steps_;
-    for (const auto& pf : run.sim.pair_forces())
-      sum_.try_emplace({pf.body_a, pf.body_b}, Vec3::Zero()).first->second += pf.force_on_a;
-    if (!run.row_due()) return;
-    for (const auto& [pair, f] : sum_) {
-      const Vec3 mean = f / steps_;
-      if (mean.squaredNorm() > 0) csv_->row({run.sim.time(), double(pair.first), double(pair.second), mean.x(), mean.y(), mean.z()});
-    }
-    sum_.clear();
-    steps_ = 0;
+    for (const auto& pf : run.sim.pair_forces()) add(pf.body_a, pf.body_b, pf.force_on_a);
+    if (run.row_due()) write(run.sim.time());
   }
   void end(const RunView&, RunSummary&) override { csv_->flush(); }
 
  private:
   std::optional<CsvWriter> csv_;
-  std::map<std::pair<int, int>, Vec3> sum_;
+  std::map<std::pair<int, int>, std::size_t> column_;  // the pair's _fx column
+  std::vector<double> row_;                            // the force sums since the previous row
   int steps_ = 0;
+
+  void add(int a, int b, const Vec3& f_on_a) {
+    Vec3 f = f_on_a;
+    if (a >= 0 && b >= 0 && b < a) std::swap(a, b), f = -f;
+    const auto it = column_.find({a, b});
+    if (it == column_.end())
+      throw std::logic_error("contact_forces.csv: a contact between bodies " + std::to_string(a) + " and " +
+                             std::to_string(b) + " has no column");
+    for (int c = 0; c < 3; ++c) row_[it->second + c] += f[c];
+  }
+  void write(double t) {
+    for (std::size_t i = 1; i < row_.size(); ++i) row_[i] /= steps_;
+    row_[0] = t;
+    csv_->row(row_);
+    std::fill(row_.begin(), row_.end(), 0.0);
+    steps_ = 0;
+  }
 };
 
 // room.pvd and vtu/room_<step>.vtu every outputs.vtu_every steps (the model's lines, displacements,
