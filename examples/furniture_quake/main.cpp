@@ -134,6 +134,7 @@ int report(const SceneSpec& spec, const RunSummary& s) {
   if (!s.diagnosis.empty()) std::printf("  %s\n", s.diagnosis.c_str());
   std::printf("  energy ledger imbalance: %.3g of its scale at the end (max %.3g)\n", s.energy_imbalance,
               s.max_energy_imbalance);
+  std::printf("  %s\n", s.energy.text.c_str());
   for (const auto& it : s.items)
     std::printf("  %-28s %-16s slide %.3f m  tilt %5.1f deg (max %5.1f)%s%s\n", it.name.c_str(), it.state.c_str(),
                 it.slide, it.tilt_deg, it.max_tilt_deg, it.resting_on.empty() ? "" : "  on ", it.resting_on.c_str());

@@ -185,8 +185,14 @@ json check_outputs(const std::string& out, const SceneSpec& spec, bool expect_fi
     CHECK(std::isfinite(it.at("slide_m").get<double>()));
     CHECK(std::isfinite(it.at("tilt_deg").get<double>()));
   }
+  const CsvTable motion = check_csv(out + "/input_motion.csv", {"ax", "ay", "az", "vx", "vy", "vz", "dx", "dy", "dz"});
+  CHECK(motion.rows() == energy.rows());
   const json sum = read_json(out + "/summary.json");
   CHECK(sum.at("scene").at("name") == spec.name);
+  const json& verdict = sum.at("energy_verdict");
+  CHECK(verdict.at("closes").is_boolean());
+  CHECK(verdict.at("tolerance_relative").get<double>() > 0);
+  CHECK(verdict.at("text").get<std::string>().find("the energy ledger") == 0);
   CHECK(sum.at("nodes").get<int>() == model_nodes(spec));
   // The peaks over every step bound every sampled row, and each is reached at a sampled time or
   // between two (so a 10 ms sampling can only under-report them).
@@ -1115,4 +1121,85 @@ TEST_CASE("run.json is written first (running) and last (done, failed), atomical
   CHECK(failed.at("status") == "failed");
   CHECK(failed.at("error") == "observer gave up");
   CHECK(failed.at("end_utc").is_string());
+}
+
+TEST_CASE("input_motion.csv: the table's acceleration, and its velocity and displacement integrated from rest",
+          "[runner][input_motion]") {
+  // X: a triangular pulse, 0 -> 2 m/s^2 at 0.1 s -> 0 at 0.2 s; Y: 1 m/s^2 from 0 to 1 s. Integrated:
+  // vx = 10 t^2, dx = 10 t^3 / 3 up to 0.1 s, ... 0.2 m/s and 0.02 m + 0.2 (t - 0.2) after 0.2 s;
+  // vy = t, dy = t^2 / 2.
+  const std::string out = fresh_dir("input_motion");
+  const SceneSpec spec = parse_scene_json(json::parse(R"({
+    "name": "known input",
+    "items": [{"kind": "side_table"}],
+    "ground_motion": {"source": "points", "x": [[0, 0], [0.1, 2.0], [0.2, 0]], "y": [[0, 1.0], [1.0, 1.0]]},
+    "duration": 0.3,
+    "outputs": {"figures": true}
+  })"),
+                                          "known.json");
+  const RunSummary s = run_scene(spec, quiet(out));
+  REQUIRE(s.status == "completed");
+  const CsvTable m = read_csv(out + "/input_motion.csv");
+  REQUIRE(m.rows() == 31);
+  const auto exact = [](double t) {
+    std::array<double, 6> r{};  // ax, vx, dx, ay, vy, dy
+    if (t <= 0.1) r = {20 * t, 10 * t * t, 10 * t * t * t / 3, 0, 0, 0};
+    else if (t <= 0.2) {
+      const double u = t - 0.1;
+      r = {2 - 20 * u, 0.1 + 2 * u - 10 * u * u, 1.0 / 300 + 0.1 * u + u * u - 10 * u * u * u / 3, 0, 0, 0};
+    } else r = {0, 0.2, 0.02 + 0.2 * (t - 0.2), 0, 0, 0};
+    r[3] = 1, r[4] = t, r[5] = t * t / 2;
+    return r;
+  };
+  for (std::size_t i = 0; i < m.rows(); ++i) {
+    const double t = m.column("t")[i];
+    const auto e = exact(t);
+    INFO("t = " << t);
+    CHECK(m.column("ax")[i] == Approx(e[0]).margin(1e-9));
+    CHECK(m.column("vx")[i] == Approx(e[1]).margin(1e-9));
+    CHECK(m.column("dx")[i] == Approx(e[2]).margin(1e-9));
+    if (t > 0) CHECK(m.column("ay")[i] == Approx(e[3]).margin(1e-12));  // at t = 0 the point itself
+    CHECK(m.column("vy")[i] == Approx(e[4]).margin(1e-9));
+    CHECK(m.column("dy")[i] == Approx(e[5]).margin(1e-9));
+    CHECK(m.column("az")[i] == 0.0);
+    CHECK(m.column("dz")[i] == 0.0);
+  }
+  check_png(out + "/input_motion.png", 1000, 900);
+}
+
+TEST_CASE("the energy ledger's verdict: closes within the tolerance, or says by how much and which term moved",
+          "[runner][energy]") {
+  const std::string out = fresh_dir("verdict");
+  SceneSpec spec = quick_scene(out);
+  spec.duration = 0.1;
+  RunOptions o = quiet(out);
+  const RunSummary s = run_scene(spec, o);
+  REQUIRE(s.status == "completed");
+  const EnergyVerdict& v = s.energy;
+  CHECK(v.tolerance == 0.05);
+  CHECK(v.relative == Approx(v.imbalance / v.scale));
+  CHECK(std::abs(v.relative) == Approx(s.energy_imbalance).epsilon(1e-12));
+  CHECK(v.closes == (std::abs(v.relative) <= 0.05));
+  CHECK_THAT(v.text, Catch::StartsWith(v.closes ? "the energy ledger closes" : "the energy ledger does not close"));
+  const json j = read_json(out + "/summary.json").at("energy_verdict");
+  CHECK(j.at("closes") == v.closes);
+  CHECK(j.at("text") == v.text);
+  CHECK(j.at("imbalance_relative").get<double>() == v.relative);
+  // The largest step of the imbalance lies between two history rows, and names the term that moved most.
+  CHECK(v.t_to - v.t_from == Approx(0.01).margin(1e-9));
+  CHECK(std::set<std::string>{"kinetic", "strain", "gravity_potential", "external_work", "contact_work",
+                              "damping_work", "plastic_work"}
+            .count(v.term) == 1);
+  const CsvTable energy = read_csv(out + "/energy.csv");
+  double largest = 0;
+  for (std::size_t i = 1; i < energy.rows(); ++i)
+    largest = std::max(largest, std::abs(energy.column("imbalance")[i] - energy.column("imbalance")[i - 1]));
+  CHECK(std::abs(v.imbalance_step) == Approx(largest).epsilon(1e-6));
+
+  // A tolerance no run meets: the verdict says it does not close, how much, when, and the term.
+  o.energy_tolerance = 1e-15;
+  const RunSummary strict = run_scene(spec, o);
+  CHECK_FALSE(strict.energy.closes);
+  CHECK_THAT(strict.energy.text, Catch::StartsWith("the energy ledger does not close") &&
+                                     Catch::Contains("changed most between t = ") && Catch::Contains(strict.energy.term));
 }

@@ -23,6 +23,7 @@
 #include "../contact/room_contact.hpp"
 #include "../core/simulation.hpp"
 #include "../excitation/excitation.hpp"
+#include "../io/vtk.hpp"
 #include "scene.hpp"
 #include "scene_simulation.hpp"
 
@@ -55,6 +56,27 @@ struct RunOptions {
   // carried-over penalty contact, or a time step too long for the penalty) is kept, but its summary's
   // diagnosis warns that the energy ledger does not close. See energy_loss_warning().
   double energy_loss_warning = 0.15;
+  // The energy ledger's verdict (RunSummary::energy): it closes when |imbalance| <= this fraction of its
+  // scale at the end of the run.
+  double energy_tolerance = 0.05;
+  VtuOptions vtu;                             // how the VTU frames are written (binary, compressed)
+};
+
+// Whether the energy ledger closes at the end of the run (summary.json "energy_verdict"), and if not,
+// when the imbalance grew most and which term moved most meanwhile.
+struct EnergyVerdict {
+  bool closes = true;
+  double tolerance = 0;       // RunOptions::energy_tolerance
+  double imbalance = 0;       // J, at the end (the ledger's: lost < 0 < created)
+  double relative = 0;        // imbalance / scale
+  double scale = 0;           // J
+  // The history-row interval in which the imbalance changed most, by how much, and the ledger term
+  // that changed most in it (kinetic, strain, gravity_potential, external_work, contact_work,
+  // damping_work, plastic_work) and by how much (J).
+  double t_from = 0, t_to = 0, imbalance_step = 0;
+  std::string term;
+  double term_step = 0;
+  std::string text;           // one sentence: "closes: ..." or "does not close: ..."
 };
 
 struct ItemFinalState {
@@ -92,6 +114,7 @@ struct RunSummary {
   int elements = 0, nodes = 0, bodies = 0;
   std::vector<ItemFinalState> items;
   std::vector<SectionForcePeak> section_peaks;  // one per outputs.sectional_forces request
+  EnergyVerdict energy;                         // the energy ledger's verdict
   std::string out_dir;                          // empty when the run wrote no files
 };
 

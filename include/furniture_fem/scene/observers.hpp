@@ -4,14 +4,17 @@
 //   ProgressBar            progress and ETA on stderr                   RunOptions::progress
 //   FinalStates            every item's final state -> RunSummary::items                 always
 //   SectionPeaks           sectional force extremes -> RunSummary::section_peaks         always
+//   EnergyCheck            the energy ledger's verdict -> RunSummary::energy             always
 //   MarkerHistory          markers.csv                                   files
 //   SectionalForceHistory  sectional_forces.csv                          files
 //   EnergyHistory          energy.csv                                    files
 //   ContactForceHistory    contact_forces.csv                            files
+//   InputMotionHistory     input_motion.csv                              files
 //   VtuSeries              room.pvd, vtu/room_<step>.vtu                 files, outputs.vtu_every > 0
 //   FinalStateFile         final_state.json                              files
 //   SummaryFile            summary.json                                  files
-//   Figures                marker_*.png, shear_*.png, room_final.png     files, figures on
+//   Figures                marker_*.png, shear_*.png, input_motion.png,  files, figures on
+//                          room_final.png
 //
 // standard_observers() picks them from the scene's outputs and the RunOptions. The file formats are
 // described in docs/io/output.md.
@@ -79,6 +82,62 @@ LineMesh line_mesh(const Sim& sim, const Model& model, bool forces) {
 }
 
 inline std::array<double, 6> section_components(const SectionForces& f) { return {f.N, f.Qy, f.Qz, f.Mx, f.My, f.Mz}; }
+
+// The table's velocity and displacement, integrated from its acceleration (RunView::motion) step by
+// step from rest: exact for an acceleration linear over each step (a record sampled at dt).
+class TableMotionIntegrator {
+ public:
+  void start(const TableMotion& m, double t) {
+    t_ = t;
+    a_ = m.at(t);
+    v_.setZero();
+    d_.setZero();
+  }
+  void advance(const TableMotion& m, double t) {
+    const double h = t - t_;
+    const Vec3 a1 = m.at(t);
+    d_ += h * v_ + h * h / 6.0 * (2.0 * a_ + a1);
+    v_ += 0.5 * h * (a_ + a1);
+    a_ = a1;
+    t_ = t;
+  }
+  const Vec3& acceleration() const { return a_; }
+  const Vec3& velocity() const { return v_; }
+  const Vec3& displacement() const { return d_; }
+
+ private:
+  double t_ = 0;
+  Vec3 a_ = Vec3::Zero(), v_ = Vec3::Zero(), d_ = Vec3::Zero();
+};
+
+inline const std::array<const char*, 7>& ledger_terms() {
+  static const std::array<const char*, 7> names{"kinetic",      "strain",       "gravity_potential", "external_work",
+                                                "contact_work", "damping_work", "plastic_work"};
+  return names;
+}
+inline std::array<double, 7> ledger_values(const EnergyLedger& E) {
+  return {E.kinetic, E.strain, E.gravity_potential, E.external_work, E.contact_work, E.damping_work, E.plastic_work};
+}
+
+inline std::string fmt3(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3g", v);
+  return b;
+}
+
+inline nlohmann::json energy_verdict_json(const EnergyVerdict& v) {
+  return {{"closes", v.closes},
+          {"tolerance_relative", v.tolerance},
+          {"imbalance_J", v.imbalance},
+          {"imbalance_relative", v.relative},
+          {"scale_J", v.scale},
+          {"largest_change", {{"t_from_s", v.t_from},
+                              {"t_to_s", v.t_to},
+                              {"imbalance_J", v.imbalance_step},
+                              {"term", v.term.empty() ? nlohmann::json() : nlohmann::json(v.term)},
+                              {"term_J", v.term_step}}},
+          {"text", v.text}};
+}
 
 inline nlohmann::json final_state_json(const std::vector<ItemFinalState>& items) {
   nlohmann::json a = nlohmann::json::array();
@@ -253,6 +312,76 @@ class SectionPeaks : public RunObserver {
   }
 };
 
+// The energy ledger's verdict (RunSummary::energy): closes when |imbalance| <= RunOptions::energy_tolerance
+// of its scale at the end; if not, how much was lost or created, the history-row interval in which the
+// imbalance changed most, and the ledger term that changed most in that interval.
+class EnergyCheck : public RunObserver {
+ public:
+  void begin(const RunView& run) override {
+    prev_ = run.row_energy;
+    t_prev_ = run.sim.time();
+  }
+  void after_step(const RunView& run, const StepInfo&) override {
+    if (!run.row_due()) return;
+    const EnergyLedger& E = run.row_energy;
+    const double step = E.imbalance() - prev_.imbalance();
+    if (std::isfinite(step) && std::abs(step) > std::abs(v_.imbalance_step)) {
+      v_.imbalance_step = step;
+      v_.t_from = t_prev_;
+      v_.t_to = run.sim.time();
+      const auto now = detail::ledger_values(E), before = detail::ledger_values(prev_);
+      double most = -1;
+      for (std::size_t k = 0; k < now.size(); ++k)
+        if (std::abs(now[k] - before[k]) > most) {
+          most = std::abs(now[k] - before[k]);
+          v_.term = detail::ledger_terms()[k];
+          v_.term_step = now[k] - before[k];
+        }
+    }
+    prev_ = E;
+    t_prev_ = run.sim.time();
+  }
+  void end(const RunView& run, RunSummary& summary) override {
+    const EnergyLedger E = run.sim.energy();  // of a diverged run: its last trusted row's
+    v_.tolerance = run.options.energy_tolerance;
+    v_.imbalance = E.imbalance();
+    v_.scale = E.scale();
+    v_.relative = v_.imbalance / v_.scale;
+    v_.closes = std::abs(v_.relative) <= v_.tolerance;
+    using detail::fmt3;
+    const std::string of = fmt3(100 * std::abs(v_.relative)) + " % of its scale, " + fmt3(v_.scale) + " J";
+    const std::string tol = fmt3(100 * v_.tolerance) + " % tolerance (RunOptions::energy_tolerance)";
+    if (!std::isfinite(v_.relative)) {
+      v_.closes = false;
+      v_.text = "the energy ledger is not finite: it cannot be checked";
+    } else if (v_.closes) {
+      v_.text = "the energy ledger closes: imbalance " + fmt3(v_.imbalance) + " J (" + of + "), within the " + tol;
+    } else {
+      v_.text = "the energy ledger does not close: " + fmt3(std::abs(v_.imbalance)) + " J " +
+                (v_.imbalance < 0 ? "lost beyond what contact, damping and plastic hinges account for"
+                                  : "created (no term of the ledger may create energy)") +
+                " (" + of + "; " + tol + ")";
+      if (!v_.term.empty())
+        v_.text += ". The imbalance changed most between t = " + fmt3(v_.t_from) + " and " + fmt3(v_.t_to) +
+                   " s, by " + fmt3(v_.imbalance_step) + " J, while " + v_.term + " changed by " +
+                   fmt3(v_.term_step) + " J";
+      if (v_.imbalance < 0)
+        v_.text += (v_.term == "contact_work" || v_.term == "kinetic")
+                       ? ": impacts lose energy with the penalty contact at this dt (a smaller dt reduces the loss)"
+                       : "";
+      else if (E.contact_work > 0)
+        v_.text += ": the contact forces did " + fmt3(E.contact_work) + " J of net positive work (interpenetrating "
+                   "items, or a penalty too stiff for dt)";
+    }
+    summary.energy = v_;
+  }
+
+ private:
+  EnergyLedger prev_;
+  double t_prev_ = 0;
+  EnergyVerdict v_;
+};
+
 // A CSV history written at the history rows: derived observers give the columns and each row.
 class RowHistory : public RunObserver {
  public:
@@ -392,6 +521,32 @@ class ContactForceHistory : public RunObserver {
   }
 };
 
+// input_motion.csv: the table's motion as the run applies it: t, acceleration ax, ay, az (m/s^2),
+// velocity vx, vy, vz (m/s) and displacement dx, dy, dz (m), integrated from rest every step (no
+// baseline correction: a record whose acceleration does not average to zero drifts).
+class InputMotionHistory : public RowHistory {
+ public:
+  void begin(const RunView& run) override {
+    table_.start(run.motion, run.sim.time());
+    RowHistory::begin(run);
+  }
+  void after_step(const RunView& run, const StepInfo& step) override {
+    table_.advance(run.motion, run.sim.time());
+    RowHistory::after_step(run, step);
+  }
+
+ private:
+  detail::TableMotionIntegrator table_;
+  std::string file() const override { return "input_motion.csv"; }
+  std::vector<std::string> columns(const RunView&) const override {
+    return {"t", "ax", "ay", "az", "vx", "vy", "vz", "dx", "dy", "dz"};
+  }
+  void write_row(const RunView& run) override {
+    const Vec3 &a = table_.acceleration(), &v = table_.velocity(), &d = table_.displacement();
+    csv().row({run.sim.time(), a.x(), a.y(), a.z(), v.x(), v.y(), v.z(), d.x(), d.y(), d.z()});
+  }
+};
+
 // room.pvd and vtu/room_<step>.vtu every outputs.vtu_every steps (the model's lines, displacements,
 // body ids and the element forces N, |Q|, |M|).
 class VtuSeries : public RunObserver {
@@ -409,7 +564,7 @@ class VtuSeries : public RunObserver {
   std::optional<PvdWriter> pvd_;
   void write_frame(const RunView& run) {
     const std::string name = "vtu/room_" + std::to_string(run.sim.steps()) + ".vtu";
-    write_vtu(run.out_dir + "/" + name, detail::line_mesh(run.sim, run.model, true));
+    write_vtu(run.out_dir + "/" + name, detail::line_mesh(run.sim, run.model, true), run.options.vtu);
     pvd_->add(run.sim.time(), name);
     pvd_->write();
   }
@@ -463,6 +618,7 @@ class SummaryFile : public RunObserver {
                          {"elements_thread", timings.elements}}},
         {"energy_imbalance_relative", sum.energy_imbalance},
         {"max_energy_imbalance_relative", sum.max_energy_imbalance},
+        {"energy_verdict", detail::energy_verdict_json(sum.energy)},
         {"ground_motion_peak_m_s2",
          {motion.peaks().x(), motion.peaks().y(), motion.peaks().z()}},
         {"final_state", detail::final_state_json(sum.items)},
@@ -481,23 +637,34 @@ class Figures : public RunObserver {
   void begin(const RunView& run) override {
     marker_series_.resize(3 * run.requests.markers.size());
     shear_series_.resize(2 * run.requests.sections.size());
+    motion_series_.resize(9);
+    table_.start(run.motion, run.sim.time());
     sample(run);
   }
   void after_step(const RunView& run, const StepInfo&) override {
+    table_.advance(run.motion, run.sim.time());
     if (run.row_due()) sample(run);
   }
   void end(const RunView& run, RunSummary&) override {
     draw_markers(run);
     draw_shears(run);
+    draw_input_motion(run);
     draw_room(run);
   }
 
  private:
   std::vector<double> t_;
   std::vector<std::vector<double>> marker_series_, shear_series_;
+  std::vector<std::vector<double>> motion_series_;  // acceleration x y z, velocity x y z, displacement x y z
+  detail::TableMotionIntegrator table_;
 
   void sample(const RunView& run) {
     t_.push_back(run.sim.time());
+    for (int c = 0; c < 3; ++c) {
+      motion_series_[c].push_back(table_.acceleration()[c]);
+      motion_series_[3 + c].push_back(table_.velocity()[c]);
+      motion_series_[6 + c].push_back(table_.displacement()[c]);
+    }
     for (size_t i = 0; i < run.requests.markers.size(); ++i) {
       const Vec3 d = run.sim.displacement(run.requests.markers[i].node);
       for (int c = 0; c < 3; ++c) marker_series_[3 * i + c].push_back(d[c]);
@@ -535,6 +702,18 @@ class Figures : public RunObserver {
       p.save_png(run.out_dir + "/shear_" + std::to_string(i) + ".png", 1000, 600);
     }
   }
+  // input_motion.png: the table's acceleration, velocity and displacement, X, Y and Z in each panel.
+  void draw_input_motion(const RunView& run) const {
+    LinePlot p;
+    p.title("Input motion (table)").xlabel("time (s)").panels(3);
+    const char* quantity[3] = {"acceleration (m/s^2)", "velocity (m/s)", "displacement (m)"};
+    const char* axis[3] = {"X", "Y", "Z"};
+    for (int q = 0; q < 3; ++q) {
+      p.ylabel(quantity[q], q);
+      for (int c = 0; c < 3; ++c) p.add(t_, motion_series_[3 * q + c], axis[c], q);
+    }
+    p.save_png(run.out_dir + "/input_motion.png", 1000, 900);
+  }
   void draw_room(const RunView& run) const {
     const SceneSpec& spec = run.spec;
     const Model& model = run.model;
@@ -567,11 +746,13 @@ inline std::vector<std::unique_ptr<RunObserver>> standard_observers(const RunVie
   if (run.options.progress) list.push_back(std::make_unique<ProgressBar>());
   list.push_back(std::make_unique<FinalStates>());
   list.push_back(std::make_unique<SectionPeaks>());
+  list.push_back(std::make_unique<EnergyCheck>());
   if (run.out_dir.empty()) return list;
   list.push_back(std::make_unique<MarkerHistory>());
   list.push_back(std::make_unique<SectionalForceHistory>());
   list.push_back(std::make_unique<EnergyHistory>());
   list.push_back(std::make_unique<ContactForceHistory>());
+  list.push_back(std::make_unique<InputMotionHistory>());
   if (run.spec.outputs.vtu_every > 0) list.push_back(std::make_unique<VtuSeries>());
   list.push_back(std::make_unique<FinalStateFile>());
   list.push_back(std::make_unique<SummaryFile>());
