@@ -129,6 +129,7 @@ class SimulationView {
   virtual const Vec3& displacement(int node) const = 0;  // m, relative to the table
   virtual const Mat3& rotation(int node) const = 0;
   virtual Vec6 velocity(int node) const = 0;
+  virtual Vec6 acceleration(int node) const = 0;         // m/s^2, rad/s^2, relative to the table
   virtual double nodal_mass(int node) const = 0;         // kg
   virtual SectionForces section_forces(int element) const = 0;
   virtual EnergyLedger energy() const = 0;               // J; costs a sweep over the elements
@@ -170,6 +171,7 @@ class SimulationViewOf final : public SteppedSimulation {
   const Vec3& displacement(int n) const override { return sim_.displacement(n); }
   const Mat3& rotation(int n) const override { return sim_.rotation(n); }
   Vec6 velocity(int n) const override { return sim_.velocity(n); }
+  Vec6 acceleration(int n) const override { return sim_.acceleration(n); }
   double nodal_mass(int n) const override { return sim_.nodal_mass(n); }
   SectionForces section_forces(int e) const override { return sim_.section_forces(e); }
   EnergyLedger energy() const override { return sim_.energy(); }

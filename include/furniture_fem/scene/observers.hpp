@@ -404,21 +404,50 @@ class RowHistory : public RunObserver {
   std::optional<CsvWriter> csv_;
 };
 
-// markers.csv: t, then <marker>_x, _y, _z per marker (displacement relative to the table, m).
+// markers.csv: t, then per marker <marker>_x, _y, _z (displacement relative to the table, m) and
+// <marker>_ax, _ay, _az: the absolute acceleration (m/s^2; the table's plus the marker's relative to
+// it), as its mean over the steps since the previous row, (v(t) - v(t_prev)) / (t - t_prev) for the
+// marker's velocity relative to the table and the table's own (integrated as input_motion.csv): a
+// penalty contact at rest chatters from one step to the next, and single steps sampled one phase of
+// it. The first row: the initial state's acceleration.
 class MarkerHistory : public RowHistory {
+ public:
+  void begin(const RunView& run) override {
+    table_.start(run.motion, run.sim.time());
+    RowHistory::begin(run);
+  }
+  void after_step(const RunView& run, const StepInfo& step) override {
+    table_.advance(run.motion, run.sim.time());
+    RowHistory::after_step(run, step);
+  }
+
+ private:
+  detail::TableMotionIntegrator table_;
+  std::vector<Vec3> v_prev_;  // each marker's absolute velocity at the previous row (m/s)
+  double t_prev_ = 0;
+
   std::string file() const override { return "markers.csv"; }
   std::vector<std::string> columns(const RunView& run) const override {
     std::vector<std::string> cols{"t"};
     for (const auto& m : run.requests.markers)
-      for (const char* c : {"_x", "_y", "_z"}) cols.push_back(m.name + c);
+      for (const char* c : {"_x", "_y", "_z", "_ax", "_ay", "_az"}) cols.push_back(m.name + c);
     return cols;
   }
   void write_row(const RunView& run) override {
-    std::vector<double> row{run.sim.time()};
-    for (const auto& m : run.requests.markers) {
-      const Vec3 d = run.sim.displacement(m.node);
-      row.insert(row.end(), {d[0], d[1], d[2]});
+    const double t = run.sim.time();
+    const bool first = v_prev_.empty();
+    v_prev_.resize(run.requests.markers.size());
+    std::vector<double> row{t};
+    for (std::size_t i = 0; i < run.requests.markers.size(); ++i) {
+      const int node = run.requests.markers[i].node;
+      const Vec3 d = run.sim.displacement(node);
+      const Vec3 v = run.sim.velocity(node).head<3>() + table_.velocity();
+      const Vec3 a = first ? Vec3(run.sim.acceleration(node).head<3>() + table_.acceleration())
+                           : Vec3((v - v_prev_[i]) / (t - t_prev_));
+      v_prev_[i] = v;
+      row.insert(row.end(), {d[0], d[1], d[2], a[0], a[1], a[2]});
     }
+    t_prev_ = t;
     csv().row(row);
   }
 };

@@ -165,12 +165,13 @@ struct ComposedScene {
 // The state after the last step the observers saw, copied by the runner after every step: what the
 // observers' end() see of a run that diverged, whose simulation may by then hold NaN (its final
 // state read "overturned, tilt 90, lift 999999999.975 m"; issue 13). Positions, displacements,
-// rotations, velocities, the pair forces and the requested sections' forces are copies; energy() is
+// rotations, velocities, accelerations, the pair forces and the requested sections' forces are copies; energy() is
 // the ledger of the last history row that passed the energy check; the rest is the live simulation's.
 class LastStepView final : public SimulationView {
  public:
   LastStepView(const SimulationView& sim, const Model& model, const ResolvedOutputs& requests)
-      : sim_(sim), x_(model.num_nodes()), u_(model.num_nodes()), R_(model.num_nodes()), v_(model.num_nodes()) {
+      : sim_(sim), x_(model.num_nodes()), u_(model.num_nodes()), R_(model.num_nodes()), v_(model.num_nodes()),
+        a_(model.num_nodes()) {
     for (const auto& s : requests.sections) sections_.push_back({s.element, {}});
   }
   void capture() {
@@ -182,6 +183,7 @@ class LastStepView final : public SimulationView {
       u_[n] = sim_.displacement(i);
       R_[n] = sim_.rotation(i);
       v_[n] = sim_.velocity(i);
+      a_[n] = sim_.acceleration(i);
     }
     pair_forces_ = sim_.pair_forces();
     for (auto& [e, f] : sections_) f = sim_.section_forces(e);
@@ -202,6 +204,7 @@ class LastStepView final : public SimulationView {
   const Vec3& displacement(int n) const override { return u_[n]; }
   const Mat3& rotation(int n) const override { return R_[n]; }
   Vec6 velocity(int n) const override { return v_[n]; }
+  Vec6 acceleration(int n) const override { return a_[n]; }
   double nodal_mass(int n) const override { return sim_.nodal_mass(n); }
   SectionForces section_forces(int e) const override {
     for (const auto& [element, f] : sections_)
@@ -222,7 +225,7 @@ class LastStepView final : public SimulationView {
   long steps_ = 0;
   std::vector<Vec3> x_, u_;
   std::vector<Mat3> R_;
-  std::vector<Vec6> v_;
+  std::vector<Vec6> v_, a_;
   std::vector<PairForce> pair_forces_;
   std::vector<std::pair<int, SectionForces>> sections_;
   EnergyLedger energy_;
