@@ -141,7 +141,8 @@ def main():
                 summ = os.path.join(odir, "summary.json")
                 if not (a.skip_existing and os.path.isfile(summ)):
                     os.makedirs(odir, exist_ok=True)
-                    cmd = ["nice", "-n", str(a.nice), a.furniture_quake, spath, "--out", odir, "--quiet"]
+                    # --overwrite: odir already holds this script's stderr.log (kept by the program).
+                    cmd = ["nice", "-n", str(a.nice), a.furniture_quake, spath, "--out", odir, "--quiet", "--overwrite"]
                     if a.duration:
                         cmd += ["--duration", str(a.duration)]
                     t0 = time.time()

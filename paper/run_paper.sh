@@ -122,7 +122,8 @@ for k in "${config_list[@]}"; do
     # time is the fairer speed figure).
     set +e
     TIMEFORMAT='time: wall %R s, user %U s, sys %S s'
-    { time nice -n "${NICE:-10}" "$FURNITURE_QUAKE" "$scene" --quiet "${duration[@]}" \
+    # --overwrite: the folder already holds this script's logs (not the program's files, which it keeps).
+    { time nice -n "${NICE:-10}" "$FURNITURE_QUAKE" "$scene" --quiet --overwrite "${duration[@]}" \
         > "results/$name/run.log" 2> "results/$name/stderr.log"; } 2> "results/$name/time.log"
     rc=$?
     set -e

@@ -2,7 +2,7 @@
 # Installs what a fresh Debian 12 machine lacks (as root, or through sudo), then configures and builds.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-pkgs="cmake g++ make libeigen3-dev libcgal-dev libboost-dev catch2 nlohmann-json3-dev libcli11-dev libbenchmark-dev"
+pkgs="cmake g++ make libeigen3-dev zlib1g-dev libcgal-dev libboost-dev catch2 nlohmann-json3-dev libcli11-dev libbenchmark-dev"
 missing=""
 for p in $pkgs; do dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"; done
 if [ -n "$missing" ]; then

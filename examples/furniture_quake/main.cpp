@@ -4,7 +4,7 @@
 // and a run summary (JSON), a VTU/PVD time series for ParaView, and PNG figures.
 //
 //   furniture_quake [scene.json | --config K [--records DIR]] [--out DIR] [--duration S]
-//                   [--output-interval S] [--no-figures] [--quiet]      (--help, --version)
+//                   [--output-interval S] [--overwrite] [--no-figures] [--quiet]   (--help, --version)
 //
 // The command line is parsed by CLI11. Exit codes: 0 done (also --help, --version), 1 bad input
 // (a scene or record file), 2 usage (a bad command line), 3 diverged, 130 interrupted. Ctrl-C or
@@ -23,6 +23,12 @@
 
 namespace {
 using namespace furniture_fem;
+
+#ifdef FFEM_GIT_HASH
+constexpr const char* git_hash = FFEM_GIT_HASH;  // the commit CMake was configured at
+#else
+constexpr const char* git_hash = "";
+#endif
 
 enum ExitCode : int { exit_done = 0, exit_bad_input = 1, exit_usage = 2, exit_diverged = 3, exit_interrupted = 130 };
 
@@ -79,7 +85,8 @@ CLI::Validator configuration_number() {
 }
 
 void define_options(CLI::App& app, CommandLine& cl, RunOptions& opt) {
-  app.set_version_flag("--version", std::string("furniture_quake (furniture_fem) ") + version_string);
+  app.set_version_flag("--version", std::string("furniture_quake (furniture_fem) ") + version_string +
+                                        (*git_hash ? std::string(", git ") + git_hash : std::string()));
   auto* scene = app.add_option("scene", cl.scene, "scene file (JSON, docs/scene/scene_file.md); without one: "
                                                   "configuration 3, built-in synthetic 3-D motion, 10 s");
   scene->type_name("FILE");
@@ -88,6 +95,9 @@ void define_options(CLI::App& app, CommandLine& cl, RunOptions& opt) {
       ->type_name("S")->check(seconds());
   app.add_option("--output-interval", opt.output_interval, "history rows every S s of simulated time")
       ->type_name("S")->check(seconds())->capture_default_str();
+  app.add_flag_callback("--overwrite", [&opt] { opt.overwrite = true; },
+                        "write into a non-empty folder that no run wrote (or whose run.json says "
+                        "\"running\"): its old results are removed first, other files are kept");
   app.add_flag_callback("--no-figures", [&opt] { opt.figures = false; }, "write no PNG figures");
   app.add_flag_callback("--quiet", [&opt] { opt.progress = false; }, "no progress bar");
   auto* config = app.add_option("--config", cl.config, "the paper's configuration K (1, 2, 3) under the JMA-Kobe records");
@@ -124,6 +134,7 @@ int report(const SceneSpec& spec, const RunSummary& s) {
   if (!s.diagnosis.empty()) std::printf("  %s\n", s.diagnosis.c_str());
   std::printf("  energy ledger imbalance: %.3g of its scale at the end (max %.3g)\n", s.energy_imbalance,
               s.max_energy_imbalance);
+  std::printf("  %s\n", s.energy.text.c_str());
   for (const auto& it : s.items)
     std::printf("  %-28s %-16s slide %.3f m  tilt %5.1f deg (max %5.1f)%s%s\n", it.name.c_str(), it.state.c_str(),
                 it.slide, it.tilt_deg, it.max_tilt_deg, it.resting_on.empty() ? "" : "  on ", it.resting_on.c_str());
@@ -139,6 +150,7 @@ int run(const CommandLine& cl, RunOptions opt) {
   opt.out_dir = cl.out_dir;
   if (cl.has_duration()) opt.duration = cl.duration;
   opt.stop = &g_stop;
+  opt.git_hash = git_hash;
   std::cerr << "furniture_fem " << version_string << ": " << spec.name << "\n";
   return report(spec, run_scene(spec, opt));
 }

@@ -40,7 +40,7 @@ macro(check_stdout expected_code regex)
 endmacro()
 
 # --help and --version: stdout, exit 0.
-check_stdout(0 "Usage:.*--duration.*--output-interval.*--config.*Exit codes: 0 done, 1 bad input.*2 usage.*3 diverged.*130 interrupted" --help)
+check_stdout(0 "Usage:.*--duration.*--output-interval.*--overwrite.*--config.*Exit codes: 0 done, 1 bad input.*2 usage.*3 diverged.*130 interrupted" --help)
 check_stdout(0 "Usage:" -h)
 check_stdout(0 "furniture_fem. ${VERSION}" --version)
 
@@ -69,11 +69,52 @@ check(1 "error: .*no_such_scene.json" no_such_scene.json)
 # signal is sent to the program itself: `exec` keeps the shell's pid, and a foreground program
 # (unlike a script's background job) has SIGINT at its default.
 check(0 "completed at t = 0.050 s" --duration 0.05 --quiet --no-figures --out short)
+
+# The results folder (docs/io/output.md): run.json says how the run ended; a folder a run wrote is written
+# again without asking; a non-empty folder no run wrote is refused (exit 1, nothing touched) unless
+# --overwrite, which keeps the user's files.
+macro(expect_file path want)
+  if(${want} AND NOT EXISTS ${WORK_DIR}/${path})
+    message(SEND_ERROR "${path} is missing")
+    math(EXPR failures "${failures} + 1")
+  elseif(NOT ${want} AND EXISTS ${WORK_DIR}/${path})
+    message(SEND_ERROR "${path} exists and should not")
+    math(EXPR failures "${failures} + 1")
+  endif()
+endmacro()
+macro(expect_run_status folder status)
+  file(READ ${WORK_DIR}/${folder}/run.json record)
+  string(JSON got GET "${record}" status)
+  if(NOT got STREQUAL "${status}")
+    message(SEND_ERROR "${folder}/run.json: status '${got}', expected '${status}'")
+    math(EXPR failures "${failures} + 1")
+  endif()
+endmacro()
+expect_run_status(short done)
+file(WRITE ${WORK_DIR}/short/marker_stale.png "stale")
+check(0 "completed at t = 0.050 s" --duration 0.05 --quiet --no-figures --out short)
+expect_file(short/marker_stale.png FALSE)
+file(WRITE ${WORK_DIR}/foreign/notes.txt "mine")
+file(WRITE ${WORK_DIR}/foreign/energy.csv "not the program's")
+check(1 "error: results folder 'foreign': is not empty and was not written by furniture_fem.*--overwrite"
+      --duration 0.05 --quiet --no-figures --out foreign)
+expect_file(foreign/run.json FALSE)
+file(READ ${WORK_DIR}/foreign/energy.csv kept)
+if(NOT kept STREQUAL "not the program's")
+  message(SEND_ERROR "foreign/energy.csv was changed by a refused run")
+  math(EXPR failures "${failures} + 1")
+endif()
+check(0 "completed at t = 0.050 s" --duration 0.05 --quiet --no-figures --out foreign --overwrite)
+expect_file(foreign/notes.txt TRUE)
+expect_run_status(foreign done)
+file(WRITE ${WORK_DIR}/a_file "x")
+check(1 "error: results folder 'a_file': exists and is not a folder" --duration 0.05 --quiet --no-figures --out a_file)
 foreach(signal TERM INT)
   set(run "(sleep 1; kill -${signal} $$) & exec \"$0\" --duration 60 --quiet --no-figures --out stopped_${signal}")
   execute_process(COMMAND sh -c "${run}" ${PROGRAM} WORKING_DIRECTORY ${WORK_DIR} TIMEOUT 120
                   RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
   verdict(130 "interrupt" "${out}${err}" "SIG${signal} after 1 s")
+  expect_run_status(stopped_${signal} interrupted)
 endforeach()
 
 # SIGTERM while the scene is read: the scene is a FIFO, so the program waits in the reading phase until

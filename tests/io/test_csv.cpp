@@ -124,3 +124,19 @@ TEST_CASE("CSV errors name the file and line", "[csv]") {
   CHECK_THROWS_AS(w.row({1.0}), InputError);
   CHECK_THROWS_AS(CsvWriter(tmp("no_such_dir/x.csv"), {"a"}), OutputError);
 }
+
+TEST_CASE("CSV columns named by items and partners read back by name", "[csv]") {
+  // contact_forces.csv's columns: "<item>|<partner>_f?", with whatever an item's name holds.
+  const std::string path = tmp("named_columns.csv");
+  const std::vector<std::string> cols{"t", "pair/lower|floor_fz", "my desk, oak|walls_fx", "a \"b\"|pair/upper_fy"};
+  {
+    CsvWriter w(path, cols);
+    w.row({0.0, -491.25, 0.0, 0.375});
+    w.row({0.01, -490.5, 2e-300, -7.5});
+  }
+  const CsvTable t = read_csv(path);
+  CHECK(t.columns() == cols);
+  CHECK(t.column("pair/lower|floor_fz") == std::vector<double>{-491.25, -490.5});
+  CHECK(t.column("my desk, oak|walls_fx") == std::vector<double>{0.0, 2e-300});
+  CHECK(t.column("a \"b\"|pair/upper_fy") == std::vector<double>{0.375, -7.5});
+}

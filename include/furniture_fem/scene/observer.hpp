@@ -23,6 +23,7 @@
 #include "../contact/room_contact.hpp"
 #include "../core/simulation.hpp"
 #include "../excitation/excitation.hpp"
+#include "../io/vtk.hpp"
 #include "scene.hpp"
 #include "scene_simulation.hpp"
 
@@ -32,6 +33,11 @@ inline constexpr const char* version_string = "0.1.0";
 
 struct RunOptions {
   std::string out_dir;                        // empty: the scene's outputs.folder
+  // A non-empty results folder that no run of this program wrote, or whose run.json says a run is still
+  // running, is refused (InputError); true: remove the old results in it (only the files a run writes,
+  // results_folder.hpp) and write. A folder a run wrote is always cleared of its old results first.
+  bool overwrite = false;
+  std::string git_hash;                       // written to run.json; empty: unknown (null)
   bool write_files = true;                    // false: no folder, no files, no figures; the summary only
   bool progress = true;                       // progress bar on stderr
   std::optional<double> duration;             // overrides the scene's duration (s)
@@ -50,6 +56,27 @@ struct RunOptions {
   // carried-over penalty contact, or a time step too long for the penalty) is kept, but its summary's
   // diagnosis warns that the energy ledger does not close. See energy_loss_warning().
   double energy_loss_warning = 0.15;
+  // The energy ledger's verdict (RunSummary::energy): it closes when |imbalance| <= this fraction of its
+  // scale at the end of the run.
+  double energy_tolerance = 0.05;
+  VtuOptions vtu;                             // how the VTU frames are written (binary, compressed)
+};
+
+// Whether the energy ledger closes at the end of the run (summary.json "energy_verdict"), and if not,
+// when the imbalance grew most and which term moved most meanwhile.
+struct EnergyVerdict {
+  bool closes = true;
+  double tolerance = 0;       // RunOptions::energy_tolerance
+  double imbalance = 0;       // J, at the end (the ledger's: lost < 0 < created)
+  double relative = 0;        // imbalance / scale
+  double scale = 0;           // J
+  // The history-row interval in which the imbalance changed most, by how much, and the ledger term
+  // that changed most in it (kinetic, strain, gravity_potential, external_work, contact_work,
+  // damping_work, plastic_work) and by how much (J).
+  double t_from = 0, t_to = 0, imbalance_step = 0;
+  std::string term;
+  double term_step = 0;
+  std::string text;           // one sentence: "closes: ..." or "does not close: ..."
 };
 
 struct ItemFinalState {
@@ -87,6 +114,7 @@ struct RunSummary {
   int elements = 0, nodes = 0, bodies = 0;
   std::vector<ItemFinalState> items;
   std::vector<SectionForcePeak> section_peaks;  // one per outputs.sectional_forces request
+  EnergyVerdict energy;                         // the energy ledger's verdict
   std::string out_dir;                          // empty when the run wrote no files
 };
 
@@ -101,6 +129,7 @@ class SimulationView {
   virtual const Vec3& displacement(int node) const = 0;  // m, relative to the table
   virtual const Mat3& rotation(int node) const = 0;
   virtual Vec6 velocity(int node) const = 0;
+  virtual Vec6 acceleration(int node) const = 0;         // m/s^2, rad/s^2, relative to the table
   virtual double nodal_mass(int node) const = 0;         // kg
   virtual SectionForces section_forces(int element) const = 0;
   virtual EnergyLedger energy() const = 0;               // J; costs a sweep over the elements
@@ -142,6 +171,7 @@ class SimulationViewOf final : public SteppedSimulation {
   const Vec3& displacement(int n) const override { return sim_.displacement(n); }
   const Mat3& rotation(int n) const override { return sim_.rotation(n); }
   Vec6 velocity(int n) const override { return sim_.velocity(n); }
+  Vec6 acceleration(int n) const override { return sim_.acceleration(n); }
   double nodal_mass(int n) const override { return sim_.nodal_mass(n); }
   SectionForces section_forces(int e) const override { return sim_.section_forces(e); }
   EnergyLedger energy() const override { return sim_.energy(); }

@@ -4,14 +4,17 @@
 //   ProgressBar            progress and ETA on stderr                   RunOptions::progress
 //   FinalStates            every item's final state -> RunSummary::items                 always
 //   SectionPeaks           sectional force extremes -> RunSummary::section_peaks         always
+//   EnergyCheck            the energy ledger's verdict -> RunSummary::energy             always
 //   MarkerHistory          markers.csv                                   files
 //   SectionalForceHistory  sectional_forces.csv                          files
 //   EnergyHistory          energy.csv                                    files
 //   ContactForceHistory    contact_forces.csv                            files
+//   InputMotionHistory     input_motion.csv                              files
 //   VtuSeries              room.pvd, vtu/room_<step>.vtu                 files, outputs.vtu_every > 0
 //   FinalStateFile         final_state.json                              files
 //   SummaryFile            summary.json                                  files
-//   Figures                marker_*.png, shear_*.png, room_final.png     files, figures on
+//   Figures                marker_*.png, shear_*.png, input_motion.png,  files, figures on
+//                          room_final.png
 //
 // standard_observers() picks them from the scene's outputs and the RunOptions. The file formats are
 // described in docs/io/output.md.
@@ -79,6 +82,62 @@ LineMesh line_mesh(const Sim& sim, const Model& model, bool forces) {
 }
 
 inline std::array<double, 6> section_components(const SectionForces& f) { return {f.N, f.Qy, f.Qz, f.Mx, f.My, f.Mz}; }
+
+// The table's velocity and displacement, integrated from its acceleration (RunView::motion) step by
+// step from rest: exact for an acceleration linear over each step (a record sampled at dt).
+class TableMotionIntegrator {
+ public:
+  void start(const TableMotion& m, double t) {
+    t_ = t;
+    a_ = m.at(t);
+    v_.setZero();
+    d_.setZero();
+  }
+  void advance(const TableMotion& m, double t) {
+    const double h = t - t_;
+    const Vec3 a1 = m.at(t);
+    d_ += h * v_ + h * h / 6.0 * (2.0 * a_ + a1);
+    v_ += 0.5 * h * (a_ + a1);
+    a_ = a1;
+    t_ = t;
+  }
+  const Vec3& acceleration() const { return a_; }
+  const Vec3& velocity() const { return v_; }
+  const Vec3& displacement() const { return d_; }
+
+ private:
+  double t_ = 0;
+  Vec3 a_ = Vec3::Zero(), v_ = Vec3::Zero(), d_ = Vec3::Zero();
+};
+
+inline const std::array<const char*, 7>& ledger_terms() {
+  static const std::array<const char*, 7> names{"kinetic",      "strain",       "gravity_potential", "external_work",
+                                                "contact_work", "damping_work", "plastic_work"};
+  return names;
+}
+inline std::array<double, 7> ledger_values(const EnergyLedger& E) {
+  return {E.kinetic, E.strain, E.gravity_potential, E.external_work, E.contact_work, E.damping_work, E.plastic_work};
+}
+
+inline std::string fmt3(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3g", v);
+  return b;
+}
+
+inline nlohmann::json energy_verdict_json(const EnergyVerdict& v) {
+  return {{"closes", v.closes},
+          {"tolerance_relative", v.tolerance},
+          {"imbalance_J", v.imbalance},
+          {"imbalance_relative", v.relative},
+          {"scale_J", v.scale},
+          {"largest_change", {{"t_from_s", v.t_from},
+                              {"t_to_s", v.t_to},
+                              {"imbalance_J", v.imbalance_step},
+                              {"term", v.term.empty() ? nlohmann::json() : nlohmann::json(v.term)},
+                              {"term_J", v.term_step}}},
+          {"text", v.text}};
+}
 
 inline nlohmann::json final_state_json(const std::vector<ItemFinalState>& items) {
   nlohmann::json a = nlohmann::json::array();
@@ -253,6 +312,76 @@ class SectionPeaks : public RunObserver {
   }
 };
 
+// The energy ledger's verdict (RunSummary::energy): closes when |imbalance| <= RunOptions::energy_tolerance
+// of its scale at the end; if not, how much was lost or created, the history-row interval in which the
+// imbalance changed most, and the ledger term that changed most in that interval.
+class EnergyCheck : public RunObserver {
+ public:
+  void begin(const RunView& run) override {
+    prev_ = run.row_energy;
+    t_prev_ = run.sim.time();
+  }
+  void after_step(const RunView& run, const StepInfo&) override {
+    if (!run.row_due()) return;
+    const EnergyLedger& E = run.row_energy;
+    const double step = E.imbalance() - prev_.imbalance();
+    if (std::isfinite(step) && std::abs(step) > std::abs(v_.imbalance_step)) {
+      v_.imbalance_step = step;
+      v_.t_from = t_prev_;
+      v_.t_to = run.sim.time();
+      const auto now = detail::ledger_values(E), before = detail::ledger_values(prev_);
+      double most = -1;
+      for (std::size_t k = 0; k < now.size(); ++k)
+        if (std::abs(now[k] - before[k]) > most) {
+          most = std::abs(now[k] - before[k]);
+          v_.term = detail::ledger_terms()[k];
+          v_.term_step = now[k] - before[k];
+        }
+    }
+    prev_ = E;
+    t_prev_ = run.sim.time();
+  }
+  void end(const RunView& run, RunSummary& summary) override {
+    const EnergyLedger E = run.sim.energy();  // of a diverged run: its last trusted row's
+    v_.tolerance = run.options.energy_tolerance;
+    v_.imbalance = E.imbalance();
+    v_.scale = E.scale();
+    v_.relative = v_.imbalance / v_.scale;
+    v_.closes = std::abs(v_.relative) <= v_.tolerance;
+    using detail::fmt3;
+    const std::string of = fmt3(100 * std::abs(v_.relative)) + " % of its scale, " + fmt3(v_.scale) + " J";
+    const std::string tol = fmt3(100 * v_.tolerance) + " % tolerance (RunOptions::energy_tolerance)";
+    if (!std::isfinite(v_.relative)) {
+      v_.closes = false;
+      v_.text = "the energy ledger is not finite: it cannot be checked";
+    } else if (v_.closes) {
+      v_.text = "the energy ledger closes: imbalance " + fmt3(v_.imbalance) + " J (" + of + "), within the " + tol;
+    } else {
+      v_.text = "the energy ledger does not close: " + fmt3(std::abs(v_.imbalance)) + " J " +
+                (v_.imbalance < 0 ? "lost beyond what contact, damping and plastic hinges account for"
+                                  : "created (no term of the ledger may create energy)") +
+                " (" + of + "; " + tol + ")";
+      if (!v_.term.empty())
+        v_.text += ". The imbalance changed most between t = " + fmt3(v_.t_from) + " and " + fmt3(v_.t_to) +
+                   " s, by " + fmt3(v_.imbalance_step) + " J, while " + v_.term + " changed by " +
+                   fmt3(v_.term_step) + " J";
+      if (v_.imbalance < 0)
+        v_.text += (v_.term == "contact_work" || v_.term == "kinetic")
+                       ? ": impacts lose energy with the penalty contact at this dt (a smaller dt reduces the loss)"
+                       : "";
+      else if (E.contact_work > 0)
+        v_.text += ": the contact forces did " + fmt3(E.contact_work) + " J of net positive work (interpenetrating "
+                   "items, or a penalty too stiff for dt)";
+    }
+    summary.energy = v_;
+  }
+
+ private:
+  EnergyLedger prev_;
+  double t_prev_ = 0;
+  EnergyVerdict v_;
+};
+
 // A CSV history written at the history rows: derived observers give the columns and each row.
 class RowHistory : public RunObserver {
  public:
@@ -275,21 +404,50 @@ class RowHistory : public RunObserver {
   std::optional<CsvWriter> csv_;
 };
 
-// markers.csv: t, then <marker>_x, _y, _z per marker (displacement relative to the table, m).
+// markers.csv: t, then per marker <marker>_x, _y, _z (displacement relative to the table, m) and
+// <marker>_ax, _ay, _az: the absolute acceleration (m/s^2; the table's plus the marker's relative to
+// it), as its mean over the steps since the previous row, (v(t) - v(t_prev)) / (t - t_prev) for the
+// marker's velocity relative to the table and the table's own (integrated as input_motion.csv): a
+// penalty contact at rest chatters from one step to the next, and single steps sampled one phase of
+// it. The first row: the initial state's acceleration.
 class MarkerHistory : public RowHistory {
+ public:
+  void begin(const RunView& run) override {
+    table_.start(run.motion, run.sim.time());
+    RowHistory::begin(run);
+  }
+  void after_step(const RunView& run, const StepInfo& step) override {
+    table_.advance(run.motion, run.sim.time());
+    RowHistory::after_step(run, step);
+  }
+
+ private:
+  detail::TableMotionIntegrator table_;
+  std::vector<Vec3> v_prev_;  // each marker's absolute velocity at the previous row (m/s)
+  double t_prev_ = 0;
+
   std::string file() const override { return "markers.csv"; }
   std::vector<std::string> columns(const RunView& run) const override {
     std::vector<std::string> cols{"t"};
     for (const auto& m : run.requests.markers)
-      for (const char* c : {"_x", "_y", "_z"}) cols.push_back(m.name + c);
+      for (const char* c : {"_x", "_y", "_z", "_ax", "_ay", "_az"}) cols.push_back(m.name + c);
     return cols;
   }
   void write_row(const RunView& run) override {
-    std::vector<double> row{run.sim.time()};
-    for (const auto& m : run.requests.markers) {
-      const Vec3 d = run.sim.displacement(m.node);
-      row.insert(row.end(), {d[0], d[1], d[2]});
+    const double t = run.sim.time();
+    const bool first = v_prev_.empty();
+    v_prev_.resize(run.requests.markers.size());
+    std::vector<double> row{t};
+    for (std::size_t i = 0; i < run.requests.markers.size(); ++i) {
+      const int node = run.requests.markers[i].node;
+      const Vec3 d = run.sim.displacement(node);
+      const Vec3 v = run.sim.velocity(node).head<3>() + table_.velocity();
+      const Vec3 a = first ? Vec3(run.sim.acceleration(node).head<3>() + table_.acceleration())
+                           : Vec3((v - v_prev_[i]) / (t - t_prev_));
+      v_prev_[i] = v;
+      row.insert(row.end(), {d[0], d[1], d[2], a[0], a[1], a[2]});
     }
+    t_prev_ = t;
     csv().row(row);
   }
 };
@@ -327,36 +485,95 @@ class EnergyHistory : public RowHistory {
   }
 };
 
-// contact_forces.csv: one row per pair of bodies in contact and row time. Each pair's force is its
-// mean over the steps since the previous row: a penalty contact at rest chatters from one step to the
-// next, and single steps sampled one phase of it (a cabinet at rest showed -75 N from the floor). The
-// first rows are the initial state's forces.
+// contact_forces.csv: t, then three columns per pair of contact partners, named by the item and the
+// partner: "<item>|floor_fx", "<item>|walls_fx" (every wall together), "<item>|obstacles_fx" (every
+// mesh obstacle together; only when the scene has obstacles) and "<item>|<other item>_fx" for every
+// pair of items (the item first in the scene's order first), _fy, _fz likewise: the force on the first
+// from the second (N), 0 when they do not touch. Each is its mean over the steps since the previous
+// row: a penalty contact at rest chatters from one step to the next, and single steps sampled one
+// phase of it (a cabinet at rest showed -75 N from the floor). The first row is the initial state's.
 class ContactForceHistory : public RunObserver {
  public:
+  // The column prefix of every pair the contact model can report, in the order of the columns.
+  static std::vector<std::pair<std::pair<int, int>, std::string>> pairs(const RunView& run) {
+    std::vector<std::pair<std::pair<int, int>, std::string>> out;
+    const int nb = run.model.num_bodies();
+    const auto name = [&](int b) { return run.model.body(b).name; };
+    for (int a = 0; a < nb; ++a) out.push_back({{a, -1}, name(a) + "|floor"});
+    for (int a = 0; a < nb; ++a) out.push_back({{a, -2}, name(a) + "|walls"});
+    if (!run.spec.obstacles.empty())
+      for (int a = 0; a < nb; ++a) out.push_back({{a, -3}, name(a) + "|obstacles"});
+    for (int a = 0; a < nb; ++a)
+      for (int b = a + 1; b < nb; ++b) out.push_back({{a, b}, name(a) + "|" + name(b)});
+    return out;
+  }
   void begin(const RunView& run) override {
-    csv_.emplace(run.out_dir + "/contact_forces.csv", std::vector<std::string>{"t", "body_a", "body_b", "fx", "fy", "fz"});
-    const double t = run.sim.time();
-    for (const auto& pf : run.sim.pair_forces())
-      csv_->row({t, double(pf.body_a), double(pf.body_b), pf.force_on_a.x(), pf.force_on_a.y(), pf.force_on_a.z()});
+    std::vector<std::string> cols{"t"};
+    for (const auto& [pair, prefix] : pairs(run)) {
+      column_.emplace(pair, cols.size());
+      for (const char* c : {"_fx", "_fy", "_fz"}) cols.push_back(prefix + c);
+    }
+    row_.assign(cols.size(), 0.0);
+    csv_.emplace(run.out_dir + "/contact_forces.csv", cols);
+    for (const auto& pf : run.sim.pair_forces()) add(pf.body_a, pf.body_b, pf.force_on_a);
+    steps_ = 1;
+    write(run.sim.time());
   }
   void after_step(const RunView& run, const StepInfo&) override {
     ++steps_;
-    for (const auto& pf : run.sim.pair_forces())
-      sum_.try_emplace({pf.body_a, pf.body_b}, Vec3::Zero()).first->second += pf.force_on_a;
-    if (!run.row_due()) return;
-    for (const auto& [pair, f] : sum_) {
-      const Vec3 mean = f / steps_;
-      if (mean.squaredNorm() > 0) csv_->row({run.sim.time(), double(pair.first), double(pair.second), mean.x(), mean.y(), mean.z()});
-    }
-    sum_.clear();
-    steps_ = 0;
+    for (const auto& pf : run.sim.pair_forces()) add(pf.body_a, pf.body_b, pf.force_on_a);
+    if (run.row_due()) write(run.sim.time());
   }
   void end(const RunView&, RunSummary&) override { csv_->flush(); }
 
  private:
   std::optional<CsvWriter> csv_;
-  std::map<std::pair<int, int>, Vec3> sum_;
+  std::map<std::pair<int, int>, std::size_t> column_;  // the pair's _fx column
+  std::vector<double> row_;                            // the force sums since the previous row
   int steps_ = 0;
+
+  void add(int a, int b, const Vec3& f_on_a) {
+    Vec3 f = f_on_a;
+    if (a >= 0 && b >= 0 && b < a) std::swap(a, b), f = -f;
+    const auto it = column_.find({a, b});
+    if (it == column_.end())
+      throw std::logic_error("contact_forces.csv: a contact between bodies " + std::to_string(a) + " and " +
+                             std::to_string(b) + " has no column");
+    for (int c = 0; c < 3; ++c) row_[it->second + c] += f[c];
+  }
+  void write(double t) {
+    for (std::size_t i = 1; i < row_.size(); ++i) row_[i] /= steps_;
+    row_[0] = t;
+    csv_->row(row_);
+    std::fill(row_.begin(), row_.end(), 0.0);
+    steps_ = 0;
+  }
+};
+
+// input_motion.csv: the table's motion as the run applies it: t, acceleration ax, ay, az (m/s^2),
+// velocity vx, vy, vz (m/s) and displacement dx, dy, dz (m), integrated from rest every step (no
+// baseline correction: a record whose acceleration does not average to zero drifts).
+class InputMotionHistory : public RowHistory {
+ public:
+  void begin(const RunView& run) override {
+    table_.start(run.motion, run.sim.time());
+    RowHistory::begin(run);
+  }
+  void after_step(const RunView& run, const StepInfo& step) override {
+    table_.advance(run.motion, run.sim.time());
+    RowHistory::after_step(run, step);
+  }
+
+ private:
+  detail::TableMotionIntegrator table_;
+  std::string file() const override { return "input_motion.csv"; }
+  std::vector<std::string> columns(const RunView&) const override {
+    return {"t", "ax", "ay", "az", "vx", "vy", "vz", "dx", "dy", "dz"};
+  }
+  void write_row(const RunView& run) override {
+    const Vec3 &a = table_.acceleration(), &v = table_.velocity(), &d = table_.displacement();
+    csv().row({run.sim.time(), a.x(), a.y(), a.z(), v.x(), v.y(), v.z(), d.x(), d.y(), d.z()});
+  }
 };
 
 // room.pvd and vtu/room_<step>.vtu every outputs.vtu_every steps (the model's lines, displacements,
@@ -376,7 +593,7 @@ class VtuSeries : public RunObserver {
   std::optional<PvdWriter> pvd_;
   void write_frame(const RunView& run) {
     const std::string name = "vtu/room_" + std::to_string(run.sim.steps()) + ".vtu";
-    write_vtu(run.out_dir + "/" + name, detail::line_mesh(run.sim, run.model, true));
+    write_vtu(run.out_dir + "/" + name, detail::line_mesh(run.sim, run.model, true), run.options.vtu);
     pvd_->add(run.sim.time(), name);
     pvd_->write();
   }
@@ -430,6 +647,7 @@ class SummaryFile : public RunObserver {
                          {"elements_thread", timings.elements}}},
         {"energy_imbalance_relative", sum.energy_imbalance},
         {"max_energy_imbalance_relative", sum.max_energy_imbalance},
+        {"energy_verdict", detail::energy_verdict_json(sum.energy)},
         {"ground_motion_peak_m_s2",
          {motion.peaks().x(), motion.peaks().y(), motion.peaks().z()}},
         {"final_state", detail::final_state_json(sum.items)},
@@ -448,23 +666,34 @@ class Figures : public RunObserver {
   void begin(const RunView& run) override {
     marker_series_.resize(3 * run.requests.markers.size());
     shear_series_.resize(2 * run.requests.sections.size());
+    motion_series_.resize(9);
+    table_.start(run.motion, run.sim.time());
     sample(run);
   }
   void after_step(const RunView& run, const StepInfo&) override {
+    table_.advance(run.motion, run.sim.time());
     if (run.row_due()) sample(run);
   }
   void end(const RunView& run, RunSummary&) override {
     draw_markers(run);
     draw_shears(run);
+    draw_input_motion(run);
     draw_room(run);
   }
 
  private:
   std::vector<double> t_;
   std::vector<std::vector<double>> marker_series_, shear_series_;
+  std::vector<std::vector<double>> motion_series_;  // acceleration x y z, velocity x y z, displacement x y z
+  detail::TableMotionIntegrator table_;
 
   void sample(const RunView& run) {
     t_.push_back(run.sim.time());
+    for (int c = 0; c < 3; ++c) {
+      motion_series_[c].push_back(table_.acceleration()[c]);
+      motion_series_[3 + c].push_back(table_.velocity()[c]);
+      motion_series_[6 + c].push_back(table_.displacement()[c]);
+    }
     for (size_t i = 0; i < run.requests.markers.size(); ++i) {
       const Vec3 d = run.sim.displacement(run.requests.markers[i].node);
       for (int c = 0; c < 3; ++c) marker_series_[3 * i + c].push_back(d[c]);
@@ -502,6 +731,18 @@ class Figures : public RunObserver {
       p.save_png(run.out_dir + "/shear_" + std::to_string(i) + ".png", 1000, 600);
     }
   }
+  // input_motion.png: the table's acceleration, velocity and displacement, X, Y and Z in each panel.
+  void draw_input_motion(const RunView& run) const {
+    LinePlot p;
+    p.title("Input motion (table)").xlabel("time (s)").panels(3);
+    const char* quantity[3] = {"acceleration (m/s^2)", "velocity (m/s)", "displacement (m)"};
+    const char* axis[3] = {"X", "Y", "Z"};
+    for (int q = 0; q < 3; ++q) {
+      p.ylabel(quantity[q], q);
+      for (int c = 0; c < 3; ++c) p.add(t_, motion_series_[3 * q + c], axis[c], q);
+    }
+    p.save_png(run.out_dir + "/input_motion.png", 1000, 900);
+  }
   void draw_room(const RunView& run) const {
     const SceneSpec& spec = run.spec;
     const Model& model = run.model;
@@ -534,11 +775,13 @@ inline std::vector<std::unique_ptr<RunObserver>> standard_observers(const RunVie
   if (run.options.progress) list.push_back(std::make_unique<ProgressBar>());
   list.push_back(std::make_unique<FinalStates>());
   list.push_back(std::make_unique<SectionPeaks>());
+  list.push_back(std::make_unique<EnergyCheck>());
   if (run.out_dir.empty()) return list;
   list.push_back(std::make_unique<MarkerHistory>());
   list.push_back(std::make_unique<SectionalForceHistory>());
   list.push_back(std::make_unique<EnergyHistory>());
   list.push_back(std::make_unique<ContactForceHistory>());
+  list.push_back(std::make_unique<InputMotionHistory>());
   if (run.spec.outputs.vtu_every > 0) list.push_back(std::make_unique<VtuSeries>());
   list.push_back(std::make_unique<FinalStateFile>());
   list.push_back(std::make_unique<SummaryFile>());

@@ -21,6 +21,7 @@
 
 #include "observer.hpp"
 #include "observers.hpp"
+#include "results_folder.hpp"
 #include "scene_simulation.hpp"
 
 namespace furniture_fem {
@@ -84,7 +85,73 @@ inline void check_run_length(const SceneSpec& spec, const RunOptions& opt) {
                          detail::fmt(spec.dt) + " s; a run may have at most 1e9");
 }
 
+// The results folder of a run: RunOptions::out_dir, or the scene's outputs.folder; empty when the run
+// writes no files.
+inline std::string results_folder_of(const SceneSpec& spec, const RunOptions& opt) {
+  return opt.write_files ? (opt.out_dir.empty() ? spec.outputs.folder : opt.out_dir) : std::string();
+}
+
+// run.json's status for a RunSummary::status: completed -> done, stopped -> interrupted, diverged ->
+// diverged (a run that ended with an error, the exception's message in "error": failed).
+inline std::string run_record_status(const std::string& summary_status) {
+  if (summary_status == "completed") return "done";
+  if (summary_status == "stopped") return "interrupted";
+  return summary_status;
+}
+
 namespace detail {
+
+// When a run started: the steady clock for its wall time, the system clock for run.json.
+struct RunStart {
+  std::chrono::steady_clock::time_point steady = std::chrono::steady_clock::now();
+  std::chrono::system_clock::time_point utc = std::chrono::system_clock::now();
+};
+
+// run.json: written when the run starts (status "running") and again as the last file when it ends.
+class RunRecord {
+ public:
+  RunRecord(const SceneSpec& spec, const RunOptions& opt, std::string out_dir, const RunStart& start)
+      : path_(out_dir + "/" + run_record_file), start_(start) {
+    j_ = {{"program", "furniture_fem"},
+          {"furniture_fem_version", version_string},
+          {"git_hash", opt.git_hash.empty() ? nlohmann::json() : nlohmann::json(opt.git_hash)},
+          {"status", "running"},
+          {"start_utc", iso8601_utc(start.utc)},
+          {"end_utc", nullptr},
+          {"wall_seconds", nullptr},
+          {"out_dir", out_dir},
+          {"options",
+           {{"duration_s", opt.duration ? nlohmann::json(*opt.duration) : nlohmann::json()},
+            {"output_interval_s", opt.output_interval},
+            {"figures", opt.figures.value_or(spec.outputs.figures)},
+            {"overwrite", opt.overwrite}}},
+          {"scene", to_json(spec)}};
+    write();
+  }
+  // The end: status, the summary's status word and diagnosis (or the error), end time, wall time, and
+  // the results files in the folder.
+  void finish(const std::string& status, const std::string& summary_status, const std::string& diagnosis,
+              const std::string& error = {}) {
+    const auto now_utc = std::chrono::system_clock::now();
+    j_["status"] = status;
+    j_["summary_status"] = summary_status.empty() ? nlohmann::json() : nlohmann::json(summary_status);
+    j_["diagnosis"] = diagnosis;
+    if (!error.empty()) j_["error"] = error;
+    j_["end_utc"] = iso8601_utc(now_utc);
+    j_["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_.steady).count();
+    std::vector<std::string> files = results_files_in(std::filesystem::path(path_).parent_path());
+    files.erase(std::remove(files.begin(), files.end(), std::string(run_record_file)), files.end());
+    files.push_back(run_record_file);
+    j_["files"] = files;  // the results files in the folder at the end, run.json last
+    write();
+  }
+
+ private:
+  void write() const { write_json_atomically(path_, j_); }
+  std::string path_;
+  RunStart start_;
+  nlohmann::json j_;
+};
 
 // The parts of a composed scene the loop needs, whatever its law and solver.
 struct ComposedScene {
@@ -98,12 +165,13 @@ struct ComposedScene {
 // The state after the last step the observers saw, copied by the runner after every step: what the
 // observers' end() see of a run that diverged, whose simulation may by then hold NaN (its final
 // state read "overturned, tilt 90, lift 999999999.975 m"; issue 13). Positions, displacements,
-// rotations, velocities, the pair forces and the requested sections' forces are copies; energy() is
+// rotations, velocities, accelerations, the pair forces and the requested sections' forces are copies; energy() is
 // the ledger of the last history row that passed the energy check; the rest is the live simulation's.
 class LastStepView final : public SimulationView {
  public:
   LastStepView(const SimulationView& sim, const Model& model, const ResolvedOutputs& requests)
-      : sim_(sim), x_(model.num_nodes()), u_(model.num_nodes()), R_(model.num_nodes()), v_(model.num_nodes()) {
+      : sim_(sim), x_(model.num_nodes()), u_(model.num_nodes()), R_(model.num_nodes()), v_(model.num_nodes()),
+        a_(model.num_nodes()) {
     for (const auto& s : requests.sections) sections_.push_back({s.element, {}});
   }
   void capture() {
@@ -115,6 +183,7 @@ class LastStepView final : public SimulationView {
       u_[n] = sim_.displacement(i);
       R_[n] = sim_.rotation(i);
       v_[n] = sim_.velocity(i);
+      a_[n] = sim_.acceleration(i);
     }
     pair_forces_ = sim_.pair_forces();
     for (auto& [e, f] : sections_) f = sim_.section_forces(e);
@@ -135,6 +204,7 @@ class LastStepView final : public SimulationView {
   const Vec3& displacement(int n) const override { return u_[n]; }
   const Mat3& rotation(int n) const override { return R_[n]; }
   Vec6 velocity(int n) const override { return v_[n]; }
+  Vec6 acceleration(int n) const override { return a_[n]; }
   double nodal_mass(int n) const override { return sim_.nodal_mass(n); }
   SectionForces section_forces(int e) const override {
     for (const auto& [element, f] : sections_)
@@ -155,7 +225,7 @@ class LastStepView final : public SimulationView {
   long steps_ = 0;
   std::vector<Vec3> x_, u_;
   std::vector<Mat3> R_;
-  std::vector<Vec6> v_;
+  std::vector<Vec6> v_, a_;
   std::vector<PairForce> pair_forces_;
   std::vector<std::pair<int, SectionForces>> sections_;
   EnergyLedger energy_;
@@ -175,8 +245,33 @@ inline void check_energy_creation(const RunView& run, const ContactStepEstimate&
   if (!why.empty()) throw SimulationError(run.sim.time(), why);
 }
 
+inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, const ComposedScene& scene,
+                                  const std::vector<RunObserver*>& extra, const RunStart& t_start);
+
+// Clears the results folder, writes run.json (status "running"), runs, and writes run.json again as
+// the last file: its final status, or "failed" and the error when an exception leaves the run.
 inline RunSummary run_observed(const SceneSpec& spec, const RunOptions& opt, const ComposedScene& scene,
-                               const std::vector<RunObserver*>& extra, std::chrono::steady_clock::time_point t_start) {
+                               const std::vector<RunObserver*>& extra, const RunStart& t_start) {
+  const std::string out_dir = results_folder_of(spec, opt);
+  if (out_dir.empty()) return run_observed_in(spec, opt, scene, extra, t_start);
+  prepare_results_folder(out_dir, opt.overwrite);
+  RunRecord record(spec, opt, out_dir, t_start);
+  RunSummary sum;
+  try {
+    sum = run_observed_in(spec, opt, scene, extra, t_start);
+  } catch (const std::exception& e) {
+    try {
+      record.finish("failed", "", "", e.what());
+    } catch (...) {  // the original error is the one to report
+    }
+    throw;
+  }
+  record.finish(run_record_status(sum.status), sum.status, sum.diagnosis);
+  return sum;
+}
+
+inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, const ComposedScene& scene,
+                                  const std::vector<RunObserver*>& extra, const RunStart& t_start) {
   SteppedSimulation& sim = scene.sim;
   const ResolvedOutputs requests = resolve_output_requests(spec, scene.model, scene.items);
   const double t_end = opt.duration.value_or(spec.duration);
@@ -188,12 +283,11 @@ inline RunSummary run_observed(const SceneSpec& spec, const RunOptions& opt, con
               requests,
               sim,
               opt,
-              opt.write_files ? (opt.out_dir.empty() ? spec.outputs.folder : opt.out_dir) : std::string(),
+              results_folder_of(spec, opt),
               t_end,
               row_interval_steps(opt, spec.dt),
               t_end - 0.5,
               sim.energy()};
-  if (!run.out_dir.empty()) std::filesystem::create_directories(run.out_dir);
   const ContactStepEstimate estimate =
       contact_step_estimate(sim, scene.model, scene.items, scene_body_contacts(spec, scene.model, scene.items));
 
@@ -252,7 +346,7 @@ inline RunSummary run_observed(const SceneSpec& spec, const RunOptions& opt, con
   if (diverged) sum.t_diverged = last.time() + spec.dt;
   sum.steps = end_state.steps();
   sum.factorizations = sim.factorizations();
-  sum.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  sum.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start.steady).count();
   const RunView end_view{run.spec,      run.model,   run.items, run.motion,
                          run.rigid_bodies, run.requests, end_state, run.options,
                          run.out_dir,   run.t_end,   run.row_interval_steps, run.settle_from,
@@ -264,7 +358,7 @@ inline RunSummary run_observed(const SceneSpec& spec, const RunOptions& opt, con
 // The only code instantiated per contact law and linear solver: building the simulation and its view.
 template <class Law, class Solver>
 RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt, const std::vector<RunObserver*>& extra,
-                        std::chrono::steady_clock::time_point t_start) {
+                        const RunStart& t_start) {
   SceneSimulation<Law, Solver> scene(spec);
   SimulationViewOf<typename SceneSimulation<Law, Solver>::Sim> view(*scene.sim);
   return run_observed(spec, opt, {*scene.model, scene.items, scene.motion, scene.rigid_bodies, view}, extra, t_start);
@@ -276,10 +370,12 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt, const std:
 // that order; returns its summary. RunOptions::write_files = false runs it without writing anything
 // (the summary still holds the final states and the section peaks).
 inline RunSummary run_scene(const SceneSpec& spec, const RunOptions& opt = {}, const std::vector<RunObserver*>& extra = {}) {
-  const auto t_start = std::chrono::steady_clock::now();
+  const detail::RunStart t_start;
   validate(spec);
   row_interval_steps(opt, spec.dt);  // a bad interval or length fails before the model is built
   check_run_length(spec, opt);
+  // A results folder that must not be written into fails before the model is built, too.
+  if (const std::string out = results_folder_of(spec, opt); !out.empty()) check_results_folder(out, opt.overwrite);
   const bool direct = spec.solver == SolverKind::direct;
   switch (spec.contact.law) {
     case ContactLawKind::paper:
