@@ -73,15 +73,40 @@ inline constexpr double max_run_steps = 1e9;  // at 1 ms: 11.6 days of simulated
 // dt. `--duration 1e300` ran forever, `-1` and `0` completed after 0 steps (issue 13).
 inline void check_run_length(const SceneSpec& spec, const RunOptions& opt) {
   const double t_end = opt.duration.value_or(spec.duration);
-  const std::string key = opt.duration ? "duration (run option)" : "duration";
+  const std::string key = opt.duration ? opt.duration_key : "duration";
+  const std::string source = opt.duration ? opt.duration_source : spec.source;
   if (!(t_end >= spec.dt) || !std::isfinite(t_end))
-    throw InputError(opt.duration ? "RunOptions" : spec.source, 0, key,
+    throw InputError(source, 0, key,
                      "must be a finite time of at least one step dt = " + detail::fmt(spec.dt) + " s (got " +
                          detail::fmt(t_end) + ")");
   if (!(t_end / spec.dt <= max_run_steps))
-    throw InputError(opt.duration ? "RunOptions" : spec.source, 0, key,
+    throw InputError(source, 0, key,
                      detail::fmt(t_end) + " s is " + detail::fmt(t_end / spec.dt) + " steps of dt = " +
                          detail::fmt(spec.dt) + " s; a run may have at most 1e9");
+}
+
+// A run longer than its ground motion (a file record after its window, or the synthetic motion's
+// duration) ran on with zero table acceleration, silently (issue 12): an InputError naming the run's
+// length (the scene's `duration` or the run option) and the motion's end, unless
+// ground_motion.pad_after_end asks for it. Half a step of dt is allowed for rounding.
+inline void check_motion_covers_run(const SceneSpec& spec, const RunOptions& opt, const TableMotion& motion) {
+  const GroundMotionSpec& g = spec.ground_motion;
+  if (g.pad_after_end) return;
+  const double t_end = opt.duration.value_or(spec.duration), end = motion_end(spec, motion);
+  if (t_end <= end + 0.5 * spec.dt + 1e-12 * end) return;
+  std::string what;
+  if (g.source == MotionSource::synthetic)
+    what = "the synthetic motion lasts " + detail::fmt(end) + " s (ground_motion.duration)";
+  else
+    what = "the record ends " + detail::fmt(end) + " s after the run's start (ground_motion.window from " +
+           detail::fmt(g.window_start) + " s" + (g.window_end ? " to " + detail::fmt(*g.window_end) + " s" : std::string()) +
+           " of record time)";
+  throw InputError(opt.duration ? opt.duration_source : spec.source, 0, opt.duration ? opt.duration_key : "duration",
+                   "the run lasts " + detail::fmt(t_end) + " s but " + what + ": shorten the run to at most " +
+                       detail::fmt(end) + " s, " +
+                       (g.source == MotionSource::synthetic ? "lengthen ground_motion.duration"
+                                                            : "move or widen ground_motion.window") +
+                       ", or set ground_motion.pad_after_end: true to run on with the table at rest after the motion");
 }
 
 namespace detail {
@@ -93,6 +118,7 @@ struct ComposedScene {
   const TableMotion& motion;
   const std::vector<int>& rigid_bodies;
   SteppedSimulation& sim;
+  double motion_scale = 1.0;  // SceneSimulation::motion_scale
 };
 
 // The state after the last step the observers saw, copied by the runner after every step: what the
@@ -178,6 +204,7 @@ inline void check_energy_creation(const RunView& run, const ContactStepEstimate&
 inline RunSummary run_observed(const SceneSpec& spec, const RunOptions& opt, const ComposedScene& scene,
                                const std::vector<RunObserver*>& extra, std::chrono::steady_clock::time_point t_start) {
   SteppedSimulation& sim = scene.sim;
+  check_motion_covers_run(spec, opt, scene.motion);  // before any folder or file is made
   const ResolvedOutputs requests = resolve_output_requests(spec, scene.model, scene.items);
   const double t_end = opt.duration.value_or(spec.duration);
   RunView run{spec,
@@ -200,6 +227,7 @@ inline RunSummary run_observed(const SceneSpec& spec, const RunOptions& opt, con
   RunSummary sum;
   sum.out_dir = run.out_dir;
   sum.duration = run.t_end;
+  sum.ground_motion_scale = scene.motion_scale;
   sum.elements = scene.model.num_elements();
   sum.nodes = scene.model.num_nodes();
   sum.bodies = scene.model.num_bodies();
@@ -267,7 +295,8 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt, const std:
                         std::chrono::steady_clock::time_point t_start) {
   SceneSimulation<Law, Solver> scene(spec);
   SimulationViewOf<typename SceneSimulation<Law, Solver>::Sim> view(*scene.sim);
-  return run_observed(spec, opt, {*scene.model, scene.items, scene.motion, scene.rigid_bodies, view}, extra, t_start);
+  return run_observed(spec, opt, {*scene.model, scene.items, scene.motion, scene.rigid_bodies, view, scene.motion_scale},
+                      extra, t_start);
 }
 
 }  // namespace detail
@@ -280,7 +309,7 @@ inline RunSummary run_scene(const SceneSpec& spec, const RunOptions& opt = {}, c
   validate(spec);
   row_interval_steps(opt, spec.dt);  // a bad interval or length fails before the model is built
   check_run_length(spec, opt);
-  const bool direct = spec.solver == SolverKind::direct;
+  const bool direct = spec.solver == SolverKind::direct;  // cg with another law than the paper's: validate()
   switch (spec.contact.law) {
     case ContactLawKind::paper:
       return direct ? detail::run_composed<PaperLaw, DirectLdltSolver>(spec, opt, extra, t_start)
