@@ -220,7 +220,7 @@ inline TableMotion scene_table_motion(const SceneSpec& s, double* scale_factor =
   std::array<Record, 3> c;
   if (g.format == RecordFormat::jma_csv) {
     c = read_jma_csv(s.resolve(g.file_x));
-    for (const Record& r : c) detail::check_record_pga(s, r, "ground_motion.files.x");
+    for (int k = 0; k < (three_d ? 3 : 1); ++k) detail::check_record_pga(s, c[k], "ground_motion.files.x");
   } else {
     c[0] = detail::scene_record(s, g.file_x, "x");
     if (three_d) {
