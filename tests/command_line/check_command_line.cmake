@@ -69,8 +69,11 @@ check(1 "error: .*no_such_scene.json" no_such_scene.json)
 # signal is sent to the program itself: `exec` keeps the shell's pid, and a foreground program
 # (unlike a script's background job) has SIGINT at its default.
 check(0 "completed at t = 0.050 s" --duration 0.05 --quiet --no-figures --out short)
+# A run past the motion's end: bad input naming the option (issue 12).
+check(1 "command line: --duration: the run lasts 11 s but the synthetic motion lasts 10 s" --duration 11 --quiet --no-figures --out too_long)
+# 10 s: the built-in motion's length (a longer run is an error, issue 12); minutes of wall time.
 foreach(signal TERM INT)
-  set(run "(sleep 1; kill -${signal} $$) & exec \"$0\" --duration 60 --quiet --no-figures --out stopped_${signal}")
+  set(run "(sleep 1; kill -${signal} $$) & exec \"$0\" --duration 10 --quiet --no-figures --out stopped_${signal}")
   execute_process(COMMAND sh -c "${run}" ${PROGRAM} WORKING_DIRECTORY ${WORK_DIR} TIMEOUT 120
                   RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
   verdict(130 "interrupt" "${out}${err}" "SIG${signal} after 1 s")
