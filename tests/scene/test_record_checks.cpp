@@ -217,8 +217,15 @@ TEST_CASE("scale_to pga gives the target peak exactly, on the larger horizontal 
     m["files"] = {{"x", "x.txt"}};
     SceneSpec one = scene_in(dir, m);
     one.duration = 0.05;
-    const RunSummary sum = run_scene(one, quiet());
+    RunOptions o = quiet();
+    o.write_files = true;
+    o.out_dir = dir + "/out";
+    const RunSummary sum = run_scene(one, o);
     CHECK(sum.status == "completed");
+    std::ifstream in(dir + "/out/summary.json");
+    const json written = json::parse(in);
+    CHECK(written.at("ground_motion_scale_factor").get<double>() == sum.ground_motion_scale);
+    CHECK(written.at("scene").at("ground_motion").at("scale_to") == json{{"pga", 3.0}});
     CHECK(sum.ground_motion_scale == Approx(3.0 / scene_table_motion(scene_in(dir, [&] {
                                                     json u = m;
                                                     u.erase("scale_to");

@@ -204,7 +204,6 @@ inline void check_energy_creation(const RunView& run, const ContactStepEstimate&
 inline RunSummary run_observed(const SceneSpec& spec, const RunOptions& opt, const ComposedScene& scene,
                                const std::vector<RunObserver*>& extra, std::chrono::steady_clock::time_point t_start) {
   SteppedSimulation& sim = scene.sim;
-  check_motion_covers_run(spec, opt, scene.motion);  // before any folder or file is made
   const ResolvedOutputs requests = resolve_output_requests(spec, scene.model, scene.items);
   const double t_end = opt.duration.value_or(spec.duration);
   RunView run{spec,
@@ -309,6 +308,9 @@ inline RunSummary run_scene(const SceneSpec& spec, const RunOptions& opt = {}, c
   validate(spec);
   row_interval_steps(opt, spec.dt);  // a bad interval or length fails before the model is built
   check_run_length(spec, opt);
+  // The ground motion, read and checked before the model is built (the simulation reads it again: a
+  // record is small): a record's unit, window, filter and scale, and the run's length against it.
+  check_motion_covers_run(spec, opt, scene_table_motion(spec));
   const bool direct = spec.solver == SolverKind::direct;  // cg with another law than the paper's: validate()
   switch (spec.contact.law) {
     case ContactLawKind::paper:
