@@ -132,6 +132,10 @@ int report(const SceneSpec& spec, const RunSummary& s) {
   std::printf("%s: %s at t = %.3f s after %ld steps, %.1f s wall time (%d elements, %d nodes, %d bodies)\n",
               spec.name.c_str(), s.status.c_str(), s.t_end, s.steps, s.wall_seconds, s.elements, s.nodes, s.bodies);
   if (!s.diagnosis.empty()) std::printf("  %s\n", s.diagnosis.c_str());
+  if (const auto& target = spec.ground_motion.scale_to)
+    std::printf("  ground motion scaled by %.6g to %s %g %s (then level %g)\n", s.ground_motion_scale,
+                target->measure == ScaleMeasure::pga ? "pga" : "pgv", target->value,
+                target->measure == ScaleMeasure::pga ? "m/s^2" : "m/s", spec.ground_motion.level);
   std::printf("  energy ledger imbalance: %.3g of its scale at the end (max %.3g)\n", s.energy_imbalance,
               s.max_energy_imbalance);
   std::printf("  %s\n", s.energy.text.c_str());
@@ -149,6 +153,8 @@ int run(const CommandLine& cl, RunOptions opt) {
   if (g_stop) return interrupted("while reading the scene");
   opt.out_dir = cl.out_dir;
   if (cl.has_duration()) opt.duration = cl.duration;
+  opt.duration_source = "command line";  // errors about the run's length name the option
+  opt.duration_key = "--duration";
   opt.stop = &g_stop;
   opt.git_hash = git_hash;
   std::cerr << "furniture_fem " << version_string << ": " << spec.name << "\n";

@@ -109,8 +109,11 @@ expect_file(foreign/notes.txt TRUE)
 expect_run_status(foreign done)
 file(WRITE ${WORK_DIR}/a_file "x")
 check(1 "error: results folder 'a_file': exists and is not a folder" --duration 0.05 --quiet --no-figures --out a_file)
+# A run past the motion's end: bad input naming the option (issue 12).
+check(1 "command line: --duration: the run lasts 11 s but the synthetic motion lasts 10 s" --duration 11 --quiet --no-figures --out too_long)
+# 10 s: the built-in motion's length (a longer run is an error, issue 12); minutes of wall time.
 foreach(signal TERM INT)
-  set(run "(sleep 1; kill -${signal} $$) & exec \"$0\" --duration 60 --quiet --no-figures --out stopped_${signal}")
+  set(run "(sleep 1; kill -${signal} $$) & exec \"$0\" --duration 10 --quiet --no-figures --out stopped_${signal}")
   execute_process(COMMAND sh -c "${run}" ${PROGRAM} WORKING_DIRECTORY ${WORK_DIR} TIMEOUT 120
                   RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
   verdict(130 "interrupt" "${out}${err}" "SIG${signal} after 1 s")

@@ -504,6 +504,7 @@ TEST_CASE("a stop request ends the run with status 'stopped' and readable output
     const std::string out = fresh_dir("stop_later");
     SceneSpec spec = parse_scene_json(small_scene_json(out), "stop_later");
     spec.duration = 60.0;  // far longer than the test waits
+    spec.ground_motion.pad_after_end = true;  // past the synthetic motion's 10 s
     std::atomic<bool> stop{false};
     RunOptions o = quiet(out);
     o.stop = &stop;

@@ -1040,15 +1040,17 @@ struct PulseOptions {
   return r;
 }
 
-// The toolkit's default 3-D input: three independent synthetic components, 10 s at dt 0.01, with the
-// character of JMA Kobe 1995 (X 8 m/s^2 at 0.5 s, Y 6 m/s^2 at 0.6 s, Z 3.3 m/s^2 at 0.2 s).
-[[nodiscard]] inline TableMotion default_table_motion(std::uint64_t seed = 1) {
+// The toolkit's default 3-D input: three independent synthetic components, `duration` s (10 by
+// default) at dt 0.01, with the character of JMA Kobe 1995 (X 8 m/s^2 at 0.5 s, Y 6 m/s^2 at 0.6 s,
+// Z 3.3 m/s^2 at 0.2 s).
+[[nodiscard]] inline TableMotion default_table_motion(std::uint64_t seed = 1, double duration = 10.0) {
   const std::uint64_t base = detail::gm::splitmix64(seed);
   auto component = [&](std::uint64_t k, double pga, double period, const char* axis) {
     SyntheticOptions o;
     o.seed = detail::gm::splitmix64(base + k);
     o.pga = pga;
     o.predominant_period = period;
+    o.duration = duration;
     o.name = std::string("default ") + axis + " (seed " + std::to_string(seed) + ")";
     return synthetic_motion(o);
   };

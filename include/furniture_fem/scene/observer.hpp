@@ -41,6 +41,8 @@ struct RunOptions {
   bool write_files = true;                    // false: no folder, no files, no figures; the summary only
   bool progress = true;                       // progress bar on stderr
   std::optional<double> duration;             // overrides the scene's duration (s)
+  // How errors about `duration` name it (file and key of InputError): a program sets its option's name.
+  std::string duration_source = "RunOptions", duration_key = "duration (run option)";
   // History rows (CSV, figures, energy checks) every output_interval s of simulated time, rounded to
   // whole steps as SceneSpec::refresh_interval_steps() rounds refresh_every (0.01 s: every 10 steps
   // at dt = 1 ms). See RunView::row_interval_steps.
@@ -116,6 +118,8 @@ struct RunSummary {
   std::vector<SectionForcePeak> section_peaks;  // one per outputs.sectional_forces request
   EnergyVerdict energy;                         // the energy ledger's verdict
   std::string out_dir;                          // empty when the run wrote no files
+  // The factor ground_motion.scale_to applied to the record (1 without a target); `level` multiplies after.
+  double ground_motion_scale = 1.0;
 };
 
 // A read-only view of the stepping simulation, whatever its contact law and linear solver (the

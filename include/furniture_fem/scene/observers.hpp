@@ -648,6 +648,7 @@ class SummaryFile : public RunObserver {
         {"energy_imbalance_relative", sum.energy_imbalance},
         {"max_energy_imbalance_relative", sum.max_energy_imbalance},
         {"energy_verdict", detail::energy_verdict_json(sum.energy)},
+        {"ground_motion_scale_factor", sum.ground_motion_scale},
         {"ground_motion_peak_m_s2",
          {motion.peaks().x(), motion.peaks().y(), motion.peaks().z()}},
         {"final_state", detail::final_state_json(sum.items)},

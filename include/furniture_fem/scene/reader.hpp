@@ -115,10 +115,12 @@ inline std::vector<std::pair<double, double>> parse_points(const ObjectReader& r
 
 // source "points": the table acceleration as given, scaled by level; nothing else applies to it.
 inline void parse_points_motion(const ObjectReader& r, GroundMotionSpec& g) {
-  for (auto key : {"dimensions", "lowpass_hz", "window", "seed", "pga", "duration", "format", "files", "units", "dt"})
+  for (auto key : {"dimensions", "lowpass_hz", "window", "seed", "pga", "duration", "format", "files", "units", "dt",
+                   "scale_to", "check_pga", "pad_after_end"})
     if (r.has(key))
       r.fail(r.path(key), "not used with source \"points\" (the points are the table acceleration as given: no "
-                          "filter, no window; the components are the keys x, y, z)");
+                          "filter, no window, no scaling but level, zero after the last point; the components "
+                          "are the keys x, y, z)");
   r.allow_only({"source", "level", "x", "y", "z"});
   g.level = r.number("level", g.level);
   r.non_negative("level");
@@ -133,9 +135,9 @@ inline void parse_ground_motion(const ObjectReader& r, GroundMotionSpec& g) {
   g.source = r.enumeration("source", source_names, MotionSource::synthetic, "ground motion source");
   if (g.source == MotionSource::points) return parse_points_motion(r, g);
   const bool synthetic = g.source == MotionSource::synthetic;
-  const std::vector<std::string_view> common{"source", "level", "dimensions", "lowpass_hz", "window"};
+  const std::vector<std::string_view> common{"source", "level", "dimensions", "lowpass_hz", "window", "pad_after_end"};
   const std::vector<std::string_view> only_synthetic{"seed", "pga", "duration"};
-  const std::vector<std::string_view> only_file{"format", "files", "units", "dt"};
+  const std::vector<std::string_view> only_file{"format", "files", "units", "dt", "scale_to", "check_pga"};
   for (auto key : synthetic ? only_file : only_synthetic)
     if (r.has(key))
       r.fail(r.path(key), std::string("only used with source \"") + (synthetic ? "file" : "synthetic") + "\"");
@@ -158,7 +160,14 @@ inline void parse_ground_motion(const ObjectReader& r, GroundMotionSpec& g) {
     g.window_end = w.optional_number("end");
     if (g.window_end) w.require(*g.window_end > g.window_start, "end", "must be later than window.start");
   }
+  g.pad_after_end = r.boolean("pad_after_end", g.pad_after_end);
   if (synthetic) {
+    // The synthetic motion is generated band-limited from t = 0 for `duration`: a low-pass corner or a
+    // window were read and not applied (issue 12).
+    for (auto key : {"lowpass_hz", "window"})
+      if (r.has(key))
+        r.fail(r.path(key), std::string("not applied to a synthetic motion (it is generated band-limited, from t = 0, "
+                                        "for ground_motion.duration); only used with source \"file\""));
     const long long seed = r.integer("seed", g.seed);
     if (r.has("seed")) r.require(seed >= 0 && seed <= 4294967295LL, "seed", "must lie in [0, 4294967295]");
     g.seed = static_cast<unsigned>(seed);
@@ -194,6 +203,19 @@ inline void parse_ground_motion(const ObjectReader& r, GroundMotionSpec& g) {
   g.dt = r.optional_number("dt");
   // The sample spacing of a column file, as plausible as a record header's (1e-300 or 1e300 ran).
   read_range(r, "dt", 1e-5, 1.0, false);
+  g.check_pga = r.boolean("check_pga", g.check_pga);
+  if (r.has("scale_to")) {
+    const ObjectReader t = r.object("scale_to");
+    t.allow_only({"pga", "pgv"}, "scale target (pga in m/s^2 or pgv in m/s)");
+    if (t.has("pga") == t.has("pgv"))
+      t.fail(t.path(), "give exactly one of \"pga\" (m/s^2) and \"pgv\" (m/s), e.g. {\"pga\": 3.0}");
+    const char* key = t.has("pga") ? "pga" : "pgv";
+    ScaleTarget target;
+    target.measure = t.has("pga") ? ScaleMeasure::pga : ScaleMeasure::pgv;
+    target.value = *t.optional_number(key);
+    t.positive(key);
+    g.scale_to = target;
+  }
 }
 
 }  // namespace detail
@@ -303,6 +325,7 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
     s.integrator.iterate_to_equilibrium = in.boolean("iterate_to_equilibrium", s.integrator.iterate_to_equilibrium);
   }
   s.solver = r.enumeration("solver", detail::solver_names, s.solver, "solver");
+  if (const std::string why = detail::solver_problem(s.solver, s.contact.law); !why.empty()) r.fail(r.path("solver"), why);
   s.refresh_every = r.number("refresh_every", s.refresh_every);
   r.positive("refresh_every");
   s.duration = r.number("duration", s.duration);

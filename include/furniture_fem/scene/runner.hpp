@@ -74,13 +74,14 @@ inline constexpr double max_run_steps = 1e9;  // at 1 ms: 11.6 days of simulated
 // dt. `--duration 1e300` ran forever, `-1` and `0` completed after 0 steps (issue 13).
 inline void check_run_length(const SceneSpec& spec, const RunOptions& opt) {
   const double t_end = opt.duration.value_or(spec.duration);
-  const std::string key = opt.duration ? "duration (run option)" : "duration";
+  const std::string key = opt.duration ? opt.duration_key : "duration";
+  const std::string source = opt.duration ? opt.duration_source : spec.source;
   if (!(t_end >= spec.dt) || !std::isfinite(t_end))
-    throw InputError(opt.duration ? "RunOptions" : spec.source, 0, key,
+    throw InputError(source, 0, key,
                      "must be a finite time of at least one step dt = " + detail::fmt(spec.dt) + " s (got " +
                          detail::fmt(t_end) + ")");
   if (!(t_end / spec.dt <= max_run_steps))
-    throw InputError(opt.duration ? "RunOptions" : spec.source, 0, key,
+    throw InputError(source, 0, key,
                      detail::fmt(t_end) + " s is " + detail::fmt(t_end / spec.dt) + " steps of dt = " +
                          detail::fmt(spec.dt) + " s; a run may have at most 1e9");
 }
@@ -97,6 +98,30 @@ inline std::string run_record_status(const std::string& summary_status) {
   if (summary_status == "completed") return "done";
   if (summary_status == "stopped") return "interrupted";
   return summary_status;
+}
+
+// A run longer than its ground motion (a file record after its window, or the synthetic motion's
+// duration) ran on with zero table acceleration, silently (issue 12): an InputError naming the run's
+// length (the scene's `duration` or the run option) and the motion's end, unless
+// ground_motion.pad_after_end asks for it. Half a step of dt is allowed for rounding.
+inline void check_motion_covers_run(const SceneSpec& spec, const RunOptions& opt, const TableMotion& motion) {
+  const GroundMotionSpec& g = spec.ground_motion;
+  if (g.pad_after_end) return;
+  const double t_end = opt.duration.value_or(spec.duration), end = motion_end(spec, motion);
+  if (t_end <= end + 0.5 * spec.dt + 1e-12 * end) return;
+  std::string what;
+  if (g.source == MotionSource::synthetic)
+    what = "the synthetic motion lasts " + detail::fmt(end) + " s (ground_motion.duration)";
+  else
+    what = "the record ends " + detail::fmt(end) + " s after the run's start (ground_motion.window from " +
+           detail::fmt(g.window_start) + " s" + (g.window_end ? " to " + detail::fmt(*g.window_end) + " s" : std::string()) +
+           " of record time)";
+  throw InputError(opt.duration ? opt.duration_source : spec.source, 0, opt.duration ? opt.duration_key : "duration",
+                   "the run lasts " + detail::fmt(t_end) + " s but " + what + ": shorten the run to at most " +
+                       detail::fmt(end) + " s, " +
+                       (g.source == MotionSource::synthetic ? "lengthen ground_motion.duration"
+                                                            : "move or widen ground_motion.window") +
+                       ", or set ground_motion.pad_after_end: true to run on with the table at rest after the motion");
 }
 
 namespace detail {
@@ -160,6 +185,7 @@ struct ComposedScene {
   const TableMotion& motion;
   const std::vector<int>& rigid_bodies;
   SteppedSimulation& sim;
+  double motion_scale = 1.0;  // SceneSimulation::motion_scale
 };
 
 // The state after the last step the observers saw, copied by the runner after every step: what the
@@ -294,6 +320,7 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
   RunSummary sum;
   sum.out_dir = run.out_dir;
   sum.duration = run.t_end;
+  sum.ground_motion_scale = scene.motion_scale;
   sum.elements = scene.model.num_elements();
   sum.nodes = scene.model.num_nodes();
   sum.bodies = scene.model.num_bodies();
@@ -361,7 +388,8 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt, const std:
                         const RunStart& t_start) {
   SceneSimulation<Law, Solver> scene(spec);
   SimulationViewOf<typename SceneSimulation<Law, Solver>::Sim> view(*scene.sim);
-  return run_observed(spec, opt, {*scene.model, scene.items, scene.motion, scene.rigid_bodies, view}, extra, t_start);
+  return run_observed(spec, opt, {*scene.model, scene.items, scene.motion, scene.rigid_bodies, view, scene.motion_scale},
+                      extra, t_start);
 }
 
 }  // namespace detail
@@ -374,9 +402,12 @@ inline RunSummary run_scene(const SceneSpec& spec, const RunOptions& opt = {}, c
   validate(spec);
   row_interval_steps(opt, spec.dt);  // a bad interval or length fails before the model is built
   check_run_length(spec, opt);
+  // The ground motion, read and checked before the model is built (the simulation reads it again: a
+  // record is small): a record's unit, window, filter and scale, and the run's length against it.
+  check_motion_covers_run(spec, opt, scene_table_motion(spec));
   // A results folder that must not be written into fails before the model is built, too.
   if (const std::string out = results_folder_of(spec, opt); !out.empty()) check_results_folder(out, opt.overwrite);
-  const bool direct = spec.solver == SolverKind::direct;
+  const bool direct = spec.solver == SolverKind::direct;  // cg with another law than the paper's: validate()
   switch (spec.contact.law) {
     case ContactLawKind::paper:
       return direct ? detail::run_composed<PaperLaw, DirectLdltSolver>(spec, opt, extra, t_start)

@@ -75,9 +75,24 @@ enum class RecordFormat { at2, knet, jma_csv, columns };
 enum class MotionDimensions { one_d, three_d };
 enum class AccelerationUnits { g, gal, m_per_s2 };
 
+// ground_motion.scale_to: the record scaled (every component by one factor) so that its horizontal peak
+// acceleration (pga, m/s^2) or peak velocity (pgv, m/s; trapezoid from rest) is `value`; the peak is
+// the largest absolute value over the horizontal components the run uses (x, and y for 3-D), taken on
+// the record as the run gets it (windowed and low-passed). `level` multiplies after the scaling.
+enum class ScaleMeasure { pga, pgv };
+struct ScaleTarget {
+  ScaleMeasure measure = ScaleMeasure::pga;
+  double value = 0;  // m/s^2 (pga) or m/s (pgv); positive
+};
+
+// The plausible band of a record's peak acceleration, in g, read with its declared unit: outside it the
+// unit is probably wrong (a record in gal read as g peaks near 1000 g). GroundMotionSpec::check_pga.
+inline constexpr double plausible_pga_min_g = 0.0005, plausible_pga_max_g = 5.0;
+
 struct GroundMotionSpec {
   MotionSource source = MotionSource::synthetic;
   // synthetic: a random motion of peak ground acceleration `pga` (m/s^2) lasting `synthetic_duration`
+  // (default_table_motion; no low-pass and no window apply to it)
   unsigned seed = 1;
   double pga = 3.0;
   double synthetic_duration = 10.0;
@@ -95,6 +110,14 @@ struct GroundMotionSpec {
   double lowpass_hz = 10.0;                // 0: no filter
   double window_start = 0.0;               // s of record time where the run starts
   std::optional<double> window_end;        // none: the record's end
+  // file: scale the record to a target peak (ScaleTarget); none: as recorded
+  std::optional<ScaleTarget> scale_to;
+  // file: a record whose peak lies outside [plausible_pga_min_g, plausible_pga_max_g] in its declared
+  // unit is an error naming the likely unit mistake; false accepts it as given.
+  bool check_pga = true;
+  // file and synthetic: a run longer than the motion (after the window) is an error; true runs on with
+  // the table at rest (zero acceleration) after the motion's end, and lets window.end pass the record's end.
+  bool pad_after_end = false;
 };
 
 enum class ContactLawKind { paper, paper_anisotropic, spring_dashpot, hunt_crossley, stick_slip, stiff };

@@ -195,6 +195,30 @@ inline void validate(const SceneSpec& s) {
   if (detail::has_control_character(s.outputs.folder))
     fail("outputs.folder", "must not hold control characters (a NUL, a newline...)");
   const auto& g = s.ground_motion;
+  if (const std::string why = detail::solver_problem(s.solver, s.contact.law); !why.empty()) fail("solver", why);
+  if (g.source == MotionSource::synthetic) {
+    // Not applied to the synthetic motion (reading a file refuses the keys; a SceneSpec made in code is
+    // checked here against the defaults).
+    if (g.lowpass_hz != GroundMotionSpec{}.lowpass_hz)
+      fail("ground_motion.lowpass_hz", "not applied to a synthetic motion (it is generated band-limited); only used "
+                                       "with source \"file\"");
+    if (g.window_start != 0 || g.window_end)
+      fail("ground_motion.window", "not applied to a synthetic motion (it runs from t = 0 for ground_motion.duration); "
+                                   "only used with source \"file\"");
+    if (!(g.synthetic_duration >= 0.02) || !std::isfinite(g.synthetic_duration))
+      fail("ground_motion.duration", "must be a finite time of at least two samples (0.02 s; got " +
+                                         detail::fmt(g.synthetic_duration) + ")");
+  }
+  if (g.scale_to) {
+    const std::string key = "ground_motion.scale_to." + detail::enum_name(detail::scale_measure_names, g.scale_to->measure);
+    if (g.source != MotionSource::file)
+      fail("ground_motion.scale_to", "only used with source \"file\" (a synthetic motion has its pga; points are "
+                                     "scaled by level)");
+    if (!(g.scale_to->value > 0) || !std::isfinite(g.scale_to->value))
+      fail(key, "must be a positive finite " + std::string(g.scale_to->measure == ScaleMeasure::pga ? "acceleration in m/s^2"
+                                                                                                   : "velocity in m/s") +
+                    " (got " + detail::fmt(g.scale_to->value) + ")");
+  }
   if (g.source == MotionSource::file) {
     for (auto [key, file] : {std::pair{"x", &g.file_x}, std::pair{"y", &g.file_y}, std::pair{"z", &g.file_z}}) {
       if (file->empty()) {

@@ -30,14 +30,17 @@ inline nlohmann::json ground_motion_json(const GroundMotionSpec& g) {
     return gm;
   }
   gm["dimensions"] = enum_name(dimension_names, g.dimensions);
-  gm["lowpass_hz"] = g.lowpass_hz;
-  gm["window"] = {{"start", g.window_start}};
-  if (g.window_end) gm["window"]["end"] = *g.window_end;
-  if (g.source == MotionSource::synthetic) {
+  gm["pad_after_end"] = g.pad_after_end;
+  if (g.source == MotionSource::synthetic) {  // no low-pass, no window: the reader refuses them
     gm["seed"] = g.seed;
     gm["pga"] = g.pga;
     gm["duration"] = g.synthetic_duration;
   } else {
+    gm["lowpass_hz"] = g.lowpass_hz;
+    gm["window"] = {{"start", g.window_start}};
+    if (g.window_end) gm["window"]["end"] = *g.window_end;
+    gm["check_pga"] = g.check_pga;
+    if (g.scale_to) gm["scale_to"] = {{enum_name(scale_measure_names, g.scale_to->measure), g.scale_to->value}};
     gm["format"] = enum_name(format_names, g.format);
     gm["files"] = {{"x", g.file_x}};
     if (!g.file_y.empty()) gm["files"]["y"] = g.file_y;

@@ -41,6 +41,7 @@ inline constexpr EnumNames<IntegratorKind, 3> integrator_names{
     {{IntegratorKind::paper_newmark, "paper_newmark"},
      {IntegratorKind::average_acceleration, "average_acceleration"},
      {IntegratorKind::generalized_alpha, "generalized_alpha"}}};
+inline constexpr EnumNames<ScaleMeasure, 2> scale_measure_names{{{ScaleMeasure::pga, "pga"}, {ScaleMeasure::pgv, "pgv"}}};
 inline constexpr EnumNames<SolverKind, 2> solver_names{{{SolverKind::cg, "cg"}, {SolverKind::direct, "direct"}}};
 
 // Which contact override a law reads: a value the chosen law ignores is a mistake worth reporting.
@@ -64,6 +65,15 @@ inline constexpr std::array<ContactField, 8> contact_fields{{
     {"stiffness", &ContactOverrides::stiffness, 0.0, 1e12, true, {false, false, true, true, true, false}, false},
     {"damping", &ContactOverrides::damping, 0.0, 1e12, false, {false, false, true, false, true, false}, false},
 }};
+
+// Why the linear solver cannot run with the contact law, or "": the runner builds the CG solver for the
+// paper's laws only (each law-solver pair is a separate instantiation of the stepping). `solver: "cg"`
+// with another law was replaced by "direct" silently (issue 12).
+inline std::string solver_problem(SolverKind solver, ContactLawKind law) {
+  if (solver != SolverKind::cg || law == ContactLawKind::paper || law == ContactLawKind::paper_anisotropic) return {};
+  return "\"cg\" is available with the contact laws \"paper\" and \"paper_anisotropic\" only; the law \"" +
+         enum_name(law_names, law) + "\" runs with \"direct\" (set \"solver\": \"direct\")";
+}
 
 inline void read_range(const ObjectReader& r, std::string_view key, double lo, double hi, bool lo_exclusive) {
   if (!r.has(key)) return;
