@@ -438,7 +438,9 @@ TEST_CASE("stiff law: stacked cabinets stand on each other, rigid and full, with
   // below 0.1 deg), sinking by less than 1 mm (the capped spring: 0.2 mm measured). Horizontally the
   // upper cabinet walks on the lower one at about 4.5 mm/s with either law, paper or stiff (measured
   // 2026-11-25: 0.5 s 1-3 mm, 2 s 5-11 mm; more with more item friction): an open problem of explicit
-  // item-item contact between crossing panel grids (docs/contact/contact.md). Bounded here at 4 mm.
+  // item-item contact between crossing panel grids (docs/contact/contact.md). Bounded here at 4 mm for
+  // full items; rigid items have their pair inside the step (rigid groups, 2026-11-26): 0.036 mm
+  // measured (was 9 mm in 2 s), bounded at the issue's 0.1 mm.
   for (const char* fidelity : {"rigid", "full"}) {
     const std::string dir = fresh_dir(std::string("stacked_stiff_") + fidelity);
     json j = json::parse(R"({
@@ -461,7 +463,7 @@ TEST_CASE("stiff law: stacked cabinets stand on each other, rigid and full, with
       INFO(it.name << ": tilt " << it.tilt_deg << " deg, cog moved " << it.cog_displacement.transpose());
       CHECK(it.tilt_deg < 0.1);
       CHECK(std::abs(it.cog_displacement.z()) < 1e-3);
-      CHECK(it.cog_displacement.head<2>().norm() < 4e-3);
+      CHECK(it.cog_displacement.head<2>().norm() < (std::string(fidelity) == "rigid" ? 1e-4 : 4e-3));
     }
   }
 }
