@@ -37,9 +37,14 @@ void check_outputs_readable(const std::string& dir, double limit) {
     for (std::size_t c = 0; c < t.columns().size(); ++c)
       for (double v : t.column(c)) REQUIRE(std::isfinite(v));
   }
+  // The displacement columns (<marker>_x, _y, _z); _ax, _ay, _az are accelerations (m/s^2).
   const CsvTable m = read_csv(dir + "/markers.csv");
-  for (std::size_t c = 1; c < m.columns().size(); ++c)
+  for (std::size_t c = 1; c < m.columns().size(); ++c) {
+    const std::string& name = m.columns()[c];
+    if (name.size() > 3 && name[name.size() - 3] == '_' && name[name.size() - 2] == 'a') continue;
+    INFO(name);
     for (double v : m.column(c)) CHECK(std::abs(v) < limit);
+  }
 }
 
 }  // namespace
