@@ -8,3 +8,4 @@
 #include "io.hpp"
 #include "figures.hpp"
 #include "scene.hpp"
+#include "study.hpp"

@@ -3,7 +3,8 @@
 #
 # A module may include its own headers and the public headers of the modules below it, never a module
 # above it or beside it, never another module's detail/. Third-party headers belong to the module whose
-# target links them: Eigen everywhere, Boost in odeint, CGAL in contact, nlohmann_json in scene. Every
+# target links them: Eigen everywhere, Boost in odeint, CGAL in contact, nlohmann_json in scene,
+# Boost (Math) in study. Every
 # header in a detail/ folder refuses direct inclusion (#error unless its module's public header includes it).
 cmake_minimum_required(VERSION 3.20)  # IN_LIST
 set(below_core "")
@@ -14,10 +15,12 @@ set(below_furniture core)
 set(below_io core)
 set(below_figures core)
 set(below_scene core contact excitation furniture io figures)
+set(below_study core contact excitation furniture io figures scene)
 set(third_party_odeint boost)
 set(third_party_contact CGAL)
 set(third_party_scene nlohmann)
-set(modules core odeint contact excitation furniture io figures scene)
+set(third_party_study boost)
+set(modules core odeint contact excitation furniture io figures scene study)
 
 set(errors "")
 file(GLOB_RECURSE headers RELATIVE ${INCLUDE_DIR} ${INCLUDE_DIR}/*.hpp)

@@ -1,0 +1,3 @@
+#pragma once
+// furniture_fem/study.hpp: the study module (seeded ensembles of scene runs, their statistics).
+#include "study/random.hpp"
