@@ -411,6 +411,19 @@ class Model {
   const Body& body(int b) const { return bodies_.at(b); }
   const Section& section_of(int e) const { return sections_[elements_[e].section]; }
   const Material& material_of(int e) const { return materials_[elements_[e].material]; }
+  // Multiplies the mass of body `b` (its members' line masses, and the mass and rotary inertia of the
+  // point masses on its nodes) by `factor`: its centre of gravity stays where it is.
+  void scale_body_mass(int b, double factor) {
+    if (!(factor > 0) || !std::isfinite(factor))
+      throw ModelError("body '" + bodies_.at(b).name + "': mass factor must be positive and finite (got " +
+                       detail::fmt(factor) + ")");
+    for (int e : bodies_.at(b).elements) elements_[e].line_mass *= factor;
+    for (auto& p : point_masses_)
+      if (nodes_[p.node].body == b) {
+        p.mass *= factor;
+        p.inertia *= factor;
+      }
+  }
   void set_line_mass(int e, double mu) {
     if (!(mu >= 0) || !std::isfinite(mu))
       throw ModelError(describe_element(e) + ": line mass must be non-negative and finite (got " +

@@ -48,6 +48,14 @@ inline std::vector<ItemInfo> build_item(const SceneSpec& scene, size_t index, Mo
     if (p.mu_floor_short) c.mu_floor_short = *p.mu_floor_short;
     if (p.mu_wall) c.mu_wall = *p.mu_wall;
     if (p.mu_item) c.mu_item = *p.mu_item;
+    if (p.alpha_scale) c.alpha *= *p.alpha_scale;
+    if (const double f = p.friction_scale.value_or(1.0); f != 1.0)
+      for (double* mu : {&c.mu_floor_long, &c.mu_floor_short, &c.mu_wall, &c.mu_item}) *mu *= f;
+    if (p.mass_scale) {
+      model.scale_body_mass(info.body, *p.mass_scale);
+      info.calibration.mass *= *p.mass_scale;
+      info.calibration.target_mass *= *p.mass_scale;
+    }
   }
   return out;
 }

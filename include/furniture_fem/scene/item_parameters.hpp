@@ -23,7 +23,7 @@ struct CommonItemParameter {
   std::string_view default_text;  // for the docs table
 };
 
-inline constexpr std::array<CommonItemParameter, 12> common_item_parameters{{
+inline constexpr std::array<CommonItemParameter, 15> common_item_parameters{{
     {{"panel_spacing", "m", 0.02, 5.0, false, 0, "panel grid spacing"}, &ItemParams::panel_spacing, false,
      "the kind's tuned value"},
     {{"grid_scale", "-", 0.1, 20.0, false, 0, "multiplies the panel grid spacing (0.5 finer, 2 coarser)"},
@@ -48,6 +48,12 @@ inline constexpr std::array<CommonItemParameter, 12> common_item_parameters{{
      "Table 4; others: the longer edge's floor value"},
     {{"mu_item", "-", 0.0, 5.0, false, 0, "dynamic friction against other items"}, &ItemParams::mu_item, false,
      "0.169"},
+    {{"mass_scale", "-", 0.01, 100.0, false, 0, "multiplies every mass of the item (centre of gravity kept)"},
+     &ItemParams::mass_scale, false, "1"},
+    {{"friction_scale", "-", 0.0, 100.0, false, 0, "multiplies every friction coefficient of the item"},
+     &ItemParams::friction_scale, false, "1"},
+    {{"alpha_scale", "-", 0.001, 1000.0, false, 0, "multiplies the contact penalty coefficient alpha"},
+     &ItemParams::alpha_scale, false, "1"},
 }};
 
 // The keys items of `kind` accept in their params, common ones first.

@@ -40,6 +40,9 @@ struct RunOptions {
   std::string git_hash;                       // written to run.json; empty: unknown (null)
   bool write_files = true;                    // false: no folder, no files, no figures; the summary only
   bool progress = true;                       // progress bar on stderr
+  // Threads over the bodies of this run; 0: every hardware thread. A study running one realisation
+  // per worker sets 1 (results are the same to the bit with any number).
+  int threads = 0;
   std::optional<double> duration;             // overrides the scene's duration (s)
   // How errors about `duration` name it (file and key of InputError): a program sets its option's name.
   std::string duration_source = "RunOptions", duration_key = "duration (run option)";

@@ -386,7 +386,7 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
 template <class Law, class Solver>
 RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt, const std::vector<RunObserver*>& extra,
                         const RunStart& t_start) {
-  SceneSimulation<Law, Solver> scene(spec);
+  SceneSimulation<Law, Solver> scene(spec, 0, opt.threads);
   SimulationViewOf<typename SceneSimulation<Law, Solver>::Sim> view(*scene.sim);
   return run_observed(spec, opt, {*scene.model, scene.items, scene.motion, scene.rigid_bodies, view, scene.motion_scale},
                       extra, t_start);

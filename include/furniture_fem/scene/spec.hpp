@@ -58,6 +58,10 @@ struct ItemParams {
   std::optional<double> panel_spacing, grid_scale, element_length;  // m, -, m
   std::optional<double> mass_kg, cog_h, cog_d1;                      // kg, m, m; single-body kinds only
   std::optional<double> alpha_kgf, dc_kgf, mu_floor_long, mu_floor_short, mu_wall, mu_item;  // ItemContact
+  // Factors on the values above as built (given or default): every mass of the item (its centre of
+  // gravity kept), every friction coefficient (floor, wall, item), the penalty alpha. For studies that
+  // perturb an item without knowing its kind's defaults (docs/study/studies.md).
+  std::optional<double> mass_scale, friction_scale, alpha_scale;
   std::map<std::string, double> kind_values;                         // the kind's own parameters
 };
 

@@ -155,6 +155,15 @@ inline void validate(const SceneSpec& s) {
       if (const auto why = declared->violation(value))
         fail(path + ".params." + key, *why + " (got " + detail::fmt(value) + ")");
     }
+    // `stiff` sets each item's stiffness and damping from its mass and inertia: a penalty given for
+    // the item would be read and ignored.
+    if (s.contact.law == ContactLawKind::stiff)
+      for (auto [key, given] : {std::pair{"alpha_kgf", item.params.alpha_kgf.has_value()},
+                                std::pair{"dc_kgf", item.params.dc_kgf.has_value()},
+                                std::pair{"alpha_scale", item.params.alpha_scale.has_value()}})
+        if (given)
+          fail(path + ".params." + key, "not used by contact law \"stiff\" (it sets each item's stiffness and damping "
+                                        "from its mass and inertia; docs/contact/contact.md)");
     const Vec3 size = item_size(item);
     if (item.params.cog_h && *item.params.cog_h >= size.z())
       fail(path + ".params.cog_h", "must lie below the item's height " + detail::fmt(size.z()) + " m (got " +
