@@ -434,39 +434,45 @@ inline std::pair<long, std::string> structure_problem(const std::string& text) {
 }
 }  // namespace detail
 
-// Reads a scene file. JSON syntax errors report the line; relative paths inside the file are taken
-// relative to the file's folder (SceneSpec::resolve).
-inline SceneSpec parse_scene(const std::string& path) {
+// Reads a JSON input file (a scene, a study; `what` names it in messages) with the checks every input
+// file gets: at most 64 MiB, nesting at most 64 deep, syntax errors and out-of-range numbers reported
+// with their line.
+inline nlohmann::json read_json_file(const std::string& path, const std::string& what = "scene") {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "", "cannot open the scene file");
+  if (!in) throw InputError(path, 0, "", "cannot open the " + what + " file");
   in.seekg(0, std::ios::end);
   const auto size = static_cast<std::size_t>(std::max<std::streamoff>(0, in.tellg()));
   if (size > detail::scene_max_bytes)
-    throw InputError(path, 0, "", "the scene file has " + std::to_string(size) + " bytes; a scene may have at most " +
-                                      std::to_string(detail::scene_max_bytes) + " (64 MiB)");
+    throw InputError(path, 0, "", "the " + what + " file has " + std::to_string(size) + " bytes; a " + what +
+                                      " file may have at most " + std::to_string(detail::scene_max_bytes) + " (64 MiB)");
   in.seekg(0);
   std::stringstream buffer;
   buffer << in.rdbuf();
   const std::string text = buffer.str();
   if (const auto [line, problem] = detail::structure_problem(text); line > 0) throw InputError(path, line, "", problem);
-  nlohmann::json j;
   try {
-    j = nlohmann::json::parse(text);
+    return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     const auto upto = text.begin() + static_cast<std::ptrdiff_t>(std::min(text.size(), static_cast<size_t>(e.byte)));
     const long line = 1 + std::count(text.begin(), upto, '\n');
     throw InputError(path, line, "", std::string("not valid JSON: ") + e.what());
   } catch (const nlohmann::json::exception& e) {  // e.g. a number out of range (1e400): no position given
     // The line of the number the library quotes ("number overflow parsing '1e400'"), found in the text.
-    const std::string what = e.what();
-    const auto q = what.find("parsing '");
-    const auto q_end = q == std::string::npos ? q : what.find('\'', q + 9);
+    const std::string what_text = e.what();
+    const auto q = what_text.find("parsing '");
+    const auto q_end = q == std::string::npos ? q : what_text.find('\'', q + 9);
     long line = 0;
     if (q_end != std::string::npos && q_end > q + 9)
-      if (const auto at = text.find(what.substr(q + 9, q_end - q - 9)); at != std::string::npos)
+      if (const auto at = text.find(what_text.substr(q + 9, q_end - q - 9)); at != std::string::npos)
         line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n');
-    throw InputError(path, line, "", "not valid JSON: " + what);
+    throw InputError(path, line, "", "not valid JSON: " + what_text);
   }
+}
+
+// Reads a scene file (read_json_file's checks); relative paths inside the file are taken relative to
+// the file's folder (SceneSpec::resolve).
+inline SceneSpec parse_scene(const std::string& path) {
+  const nlohmann::json j = read_json_file(path, "scene");
   SceneSpec s = parse_scene_json(j, path);
   s.base_dir = std::filesystem::path(path).parent_path().string();
   return s;

@@ -1,0 +1,182 @@
+#pragma once
+// furniture_fem/study/outcomes.hpp: what one run of a study yields, collected through the scene
+// runner's observers (not read back from result files), and its record as JSON.
+//
+//   RunResult run_realisation(study, run_index, stop)    runs realisation run_index / variants, variant run_index % variants
+//   nlohmann::json to_json(const RunResult&) / RunResult run_result_from_json(json)   exact round trip
+//
+// A run that diverges, or whose scene is refused (an item placed into another by its perturbation),
+// is a result too: status "diverged" or "failed", with its diagnosis. Only a run stopped by the user
+// is not a result (status "stopped": the study runs it again when resumed).
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "../scene/scene_runner.hpp"
+#include "realisation.hpp"
+
+namespace furniture_fem {
+
+// One body's outcome (separated cabinets give two: "<item>/lower", "<item>/upper").
+struct BodyOutcome {
+  std::string name;
+  std::string state;            // ItemFinalState::state: standing, slid, tilted, fell, overturned, resting_on_item, diverged
+  double slide = 0;             // m
+  double tilt_deg = 0, max_tilt_deg = 0;
+  double lift = 0;              // m
+  std::string resting_on;
+  // The largest magnitude over the run's steps of the summed contact force on the body from the
+  // floor, from the walls and from other items (N).
+  double floor_force_peak = 0, wall_force_peak = 0, item_force_peak = 0;
+};
+
+// The largest absolute value of each sectional force component (N, Qy, Qz, Mx, My, Mz) of one
+// requested section (the scene's outputs.sectional_forces).
+struct SectionOutcome {
+  std::string section;
+  std::array<double, 6> abs_max{};
+};
+
+struct RunResult {
+  long run = 0;                 // realisation * variants + variant
+  long realisation = 0;
+  int variant = 0;
+  std::string status;           // completed, diverged, failed (stopped runs are not results)
+  std::string diagnosis;
+  double t_end = 0;             // s reached
+  double wall_seconds = 0;      // not compared between runs of a study: it depends on the machine
+  std::vector<BodyOutcome> bodies;
+  std::vector<SectionOutcome> sections;
+};
+
+inline constexpr std::array<const char*, 6> section_components{"N", "Qy", "Qz", "Mx", "My", "Mz"};
+
+// Contact-force peaks per body, from the pair forces of every step.
+class ContactForcePeaks : public RunObserver {
+ public:
+  void begin(const RunView& run) override { peaks_.assign(run.model.num_bodies(), {0.0, 0.0, 0.0}); }
+  void after_step(const RunView& run, const StepInfo&) override {
+    const int nb = run.model.num_bodies();
+    sums_.assign(nb, {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
+    for (const PairForce& p : run.sim.pair_forces()) {
+      const int kind = p.body_b == -1 ? 0 : p.body_b == -2 ? 1 : 2;  // floor, wall, item
+      if (p.body_a >= 0 && p.body_a < nb) sums_[p.body_a][kind] += p.force_on_a;
+      if (kind == 2 && p.body_b < nb) sums_[p.body_b][2] -= p.force_on_a;
+    }
+    for (int b = 0; b < nb; ++b)
+      for (int k = 0; k < 3; ++k) peaks_[b][k] = std::max(peaks_[b][k], sums_[b][k].norm());
+  }
+  const std::array<double, 3>& peaks(int body) const { return peaks_.at(body); }
+
+ private:
+  std::vector<std::array<double, 3>> peaks_;
+  std::vector<std::array<Vec3, 3>> sums_;
+};
+
+// The body index of each final state, in the summary's order (FinalStates writes one per ItemInfo).
+class BodyOrder : public RunObserver {
+ public:
+  void begin(const RunView& run) override {
+    bodies_.clear();
+    for (const auto& it : run.items) bodies_.push_back(it.body);
+  }
+  const std::vector<int>& bodies() const { return bodies_; }
+
+ private:
+  std::vector<int> bodies_;
+};
+
+inline RunResult run_realisation(const StudySpec& s, long run, const std::atomic<bool>* stop = nullptr) {
+  const auto t0 = std::chrono::steady_clock::now();
+  RunResult r;
+  r.run = run;
+  r.realisation = run / s.num_variants();
+  r.variant = static_cast<int>(run % s.num_variants());
+  ContactForcePeaks peaks;
+  BodyOrder order;
+  try {
+    const RealisationParameters p = realisation_parameters(s, r.realisation);
+    const std::string what = "realisation " + std::to_string(r.realisation) + ", variant '" + s.variant_name(r.variant) + "'";
+    const SceneSpec scene = study_scene(s, realisation_scene_json(s, p, r.variant), what);
+    RunOptions o;
+    o.write_files = false;
+    o.progress = false;
+    o.threads = 1;  // one realisation per worker: more throughput than threads inside one run
+    o.stop = stop;
+    const RunSummary sum = run_scene(scene, o, {&peaks, &order});
+    r.status = sum.status;
+    r.diagnosis = sum.diagnosis;
+    r.t_end = sum.t_end;
+    for (std::size_t i = 0; i < sum.items.size(); ++i) {
+      const ItemFinalState& f = sum.items[i];
+      BodyOutcome b{f.name, f.state, f.slide, f.tilt_deg, f.max_tilt_deg, f.lift, f.resting_on};
+      if (i < order.bodies().size()) {
+        const auto& pk = peaks.peaks(order.bodies()[i]);
+        b.floor_force_peak = pk[0];
+        b.wall_force_peak = pk[1];
+        b.item_force_peak = pk[2];
+      }
+      r.bodies.push_back(b);
+    }
+    for (const auto& sp : sum.section_peaks) {
+      SectionOutcome so{sp.section, {}};
+      for (int k = 0; k < 6; ++k) so.abs_max[k] = std::max(std::abs(sp.min[k]), std::abs(sp.max[k]));
+      r.sections.push_back(so);
+    }
+  } catch (const std::exception& e) {  // a refused scene or model: recorded, the study goes on
+    r.status = "failed";
+    r.diagnosis = e.what();
+    r.bodies.clear();
+    r.sections.clear();
+  }
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+inline nlohmann::json to_json(const RunResult& r) {
+  nlohmann::json bodies = nlohmann::json::array(), sections = nlohmann::json::array();
+  for (const auto& b : r.bodies)
+    bodies.push_back({{"name", b.name},
+                      {"state", b.state},
+                      {"slide", b.slide},
+                      {"tilt_deg", b.tilt_deg},
+                      {"max_tilt_deg", b.max_tilt_deg},
+                      {"lift", b.lift},
+                      {"resting_on", b.resting_on},
+                      {"floor_force_peak", b.floor_force_peak},
+                      {"wall_force_peak", b.wall_force_peak},
+                      {"item_force_peak", b.item_force_peak}});
+  for (const auto& s : r.sections) sections.push_back({{"section", s.section}, {"abs_max", s.abs_max}});
+  return {{"run", r.run},     {"realisation", r.realisation}, {"variant", r.variant},
+          {"status", r.status}, {"diagnosis", r.diagnosis},   {"t_end", r.t_end},
+          {"wall_seconds", r.wall_seconds}, {"bodies", bodies}, {"sections", sections}};
+}
+
+// Reads a record back (a resumed study, an MPI worker's message); nlohmann's numbers round-trip
+// exactly. Throws nlohmann::json::exception on a malformed record.
+inline RunResult run_result_from_json(const nlohmann::json& j) {
+  RunResult r;
+  r.run = j.at("run").get<long>();
+  r.realisation = j.at("realisation").get<long>();
+  r.variant = j.at("variant").get<int>();
+  r.status = j.at("status").get<std::string>();
+  r.diagnosis = j.at("diagnosis").get<std::string>();
+  r.t_end = j.at("t_end").get<double>();
+  r.wall_seconds = j.at("wall_seconds").get<double>();
+  for (const auto& b : j.at("bodies"))
+    r.bodies.push_back({b.at("name").get<std::string>(), b.at("state").get<std::string>(), b.at("slide").get<double>(),
+                        b.at("tilt_deg").get<double>(), b.at("max_tilt_deg").get<double>(), b.at("lift").get<double>(),
+                        b.at("resting_on").get<std::string>(), b.at("floor_force_peak").get<double>(),
+                        b.at("wall_force_peak").get<double>(), b.at("item_force_peak").get<double>()});
+  for (const auto& s : j.at("sections"))
+    r.sections.push_back({s.at("section").get<std::string>(), s.at("abs_max").get<std::array<double, 6>>()});
+  return r;
+}
+
+}  // namespace furniture_fem
