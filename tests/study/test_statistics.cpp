@@ -225,6 +225,8 @@ TEST_CASE("fragility fit: degenerate data are flagged with the reason, never NaN
   expect_flagged({{0.2, 10, 0}, {0.3, 10, 4}, {0.4, 10, 10}}, "perfectly separated");
   // Failure fractions falling with im: the best probit slope is negative.
   expect_flagged({{0.2, 10, 8}, {0.3, 10, 5}, {0.4, 10, 2}}, "do not rise with im");
+  // Separated the wrong way round (all fail low, none high): the slope runs off to -infinity.
+  expect_flagged({{0.2, 10, 10}, {0.4, 10, 0}}, "do not rise with im");
   // The bootstrap of such data forms no interval and says so.
   const FragilityInterval none = bootstrap_fragility({{0.2, 10, 0}, {0.4, 10, 10}}, 50, 7);
   CHECK(none.not_identifiable == 50);
