@@ -3,8 +3,7 @@
 #
 # A module may include its own headers and the public headers of the modules below it, never a module
 # above it or beside it, never another module's detail/. Third-party headers belong to the module whose
-# target links them: Eigen everywhere, Boost in odeint, CGAL in contact, nlohmann_json in scene,
-# Boost (Math) in study. Every
+# target links them: Eigen everywhere, Boost in odeint, CGAL in contact, nlohmann_json in scene. Every
 # header in a detail/ folder refuses direct inclusion (#error unless its module's public header includes it).
 cmake_minimum_required(VERSION 3.20)  # IN_LIST
 set(below_core "")
@@ -19,7 +18,6 @@ set(below_study core contact excitation furniture io figures scene)
 set(third_party_odeint boost)
 set(third_party_contact CGAL)
 set(third_party_scene nlohmann)
-set(third_party_study boost)
 set(modules core odeint contact excitation furniture io figures scene study)
 
 set(errors "")

@@ -1,0 +1,265 @@
+// Studies (issue 14): the study file and its named errors, realisation parameters from the seed and
+// the index alone, runs whose outcomes match closed-form Coulomb sliding with each realisation's own
+// perturbed friction, the same realisations.csv with 1 and 2 workers and after a resume, and failed
+// realisations recorded with their diagnosis.
+#include <catch2/catch.hpp>
+
+#include <furniture_fem/study/runner.hpp>
+
+#include "../support/test_files.hpp"
+
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+using namespace furniture_fem;
+using nlohmann::json;
+using Catch::Matchers::Contains;
+
+namespace {
+
+constexpr double g = 9.80665;
+
+// A 20 kg block (rigid, stiff contact: Coulomb friction to ~1 %) under a constant table acceleration
+// A = level * 0.25 g along X for `seconds`; mu 0.15 at the nominal friction.
+json block_scene(double seconds = 0.5) {
+  return {{"name", "block"},
+          {"items", {{{"kind", "block"}, {"name", "crate"}, {"fidelity", "rigid"},
+                      {"params", {{"width", 0.4}, {"depth", 0.4}, {"height", 0.4}, {"mass_kg", 20.0},
+                                  {"mu_floor_long", 0.15}, {"mu_floor_short", 0.15}}}}}},
+          {"ground_motion", {{"source", "points"},
+                             {"x", {{0.0, 0.25 * g}, {seconds, 0.25 * g}, {seconds + 1e-4, 0.0}}}}},
+          {"contact", {{"law", "stiff"}}},
+          {"duration", seconds},
+          {"outputs", {{"figures", false}}}};
+}
+
+json block_study(int realisations = 3) {
+  return {{"name", "blocks"},
+          {"seed", 7},
+          {"scene", block_scene()},
+          {"intensity", {{"measure", "scale"}, {"levels", {1.0, 1.2}}}},
+          {"perturbations", {{"friction", 0.2}, {"x", 0.05}}},
+          {"realisations", realisations}};
+}
+
+StudySpec study_of(const json& j) { return parse_study_json(j, "study.json"); }
+
+std::string fresh_dir(const std::string& name) {
+  const std::string d = ffem_test::tmp(name);
+  std::filesystem::remove_all(d);
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("a realisation's parameters follow from the seed and its index alone", "[study]") {
+  json j = block_study(50);
+  const StudySpec s = study_of(j);
+  REQUIRE(s.num_realisations() == 100);
+  const RealisationParameters p17 = realisation_parameters(s, 17);
+  // Asked again, after others, from another copy of the study: the same bits.
+  for (long i : {99L, 3L, 0L}) (void)realisation_parameters(s, i);
+  const RealisationParameters again = realisation_parameters(study_of(j), 17);
+  REQUIRE(p17.items.size() == 1);
+  CHECK(again.items[0].dx == p17.items[0].dx);
+  CHECK(again.items[0].friction_factor == p17.items[0].friction_factor);
+  // Level-major numbering: 17 = level 0, replicate 17; 67 = level 1, the same room (replicate 17).
+  const RealisationParameters p67 = realisation_parameters(s, 67);
+  CHECK(p17.level_index == 0);
+  CHECK(p67.level_index == 1);
+  CHECK(p67.replicate == 17);
+  CHECK(p67.level == 1.2);
+  CHECK(p67.items[0].dx == p17.items[0].dx);
+  CHECK(p67.items[0].friction_factor == p17.items[0].friction_factor);
+  // Each factor has its own stream: turning the friction perturbation off leaves dx unchanged.
+  json no_friction = j;
+  no_friction["perturbations"]["friction"] = 0.0;
+  const RealisationParameters nf = realisation_parameters(study_of(no_friction), 17);
+  CHECK(nf.items[0].dx == p17.items[0].dx);
+  CHECK(nf.items[0].friction_factor == 1.0);
+  // Another seed, other values.
+  json other_seed = j;
+  other_seed["seed"] = 8;
+  CHECK(realisation_parameters(study_of(other_seed), 17).items[0].dx != p17.items[0].dx);
+  CHECK_THROWS_AS(realisation_parameters(s, 100), std::out_of_range);
+}
+
+TEST_CASE("perturbations are uniform in their range", "[study]") {
+  // 2000 realisations of dx in [-0.05, 0.05]: every value in range, mean within 4 standard errors of 0
+  // (sd of U(-a, a) is a / sqrt(3): 4 * 0.0289 / sqrt(2000) = 0.0026), and each tenth of the range
+  // holding 200 +- 4 sqrt(200 * 0.9) = 200 +- 54.
+  json j = block_study(1000);
+  const StudySpec s = study_of(j);
+  double sum = 0;
+  std::array<int, 10> bins{};
+  for (long i = 0; i < 1000; ++i) {  // level 0 only: level 1 repeats the same rooms
+    const double dx = realisation_parameters(s, i).items[0].dx;
+    REQUIRE(std::abs(dx) <= 0.05);
+    sum += dx;
+    ++bins[std::min(9, static_cast<int>((dx + 0.05) / 0.01))];
+    const double f = realisation_parameters(s, i).items[0].friction_factor;
+    REQUIRE((f >= 0.8 && f <= 1.2));
+  }
+  CHECK(std::abs(sum / 1000) < 4 * 0.05 / std::sqrt(3.0) / std::sqrt(1000.0));
+  for (int b : bins) CHECK(std::abs(b - 100) <= 4 * std::sqrt(100 * 0.9));
+}
+
+TEST_CASE("each realisation slides as Coulomb says with its own friction and intensity", "[study]") {
+  // Slide after t: 0.5 (A - mu g) t^2 with A = level * 0.25 g and mu = 0.15 * friction_factor
+  // (perturbed in [0.12, 0.18]); the stick spring and the onset cost ~1 % (tests/scene, test_item_scales).
+  const StudySpec s = study_of(block_study(3));
+  for (long run = 0; run < s.num_runs(); ++run) {
+    const RunResult r = run_realisation(s, run);
+    REQUIRE(r.status == "completed");
+    const RealisationParameters p = realisation_parameters(s, r.realisation);
+    const double A = p.level * 0.25 * g, mu = 0.15 * p.items[0].friction_factor;
+    const double expected = 0.5 * (A - mu * g) * 0.25;
+    INFO("run " << run << ": level " << p.level << ", friction factor " << p.items[0].friction_factor);
+    REQUIRE(r.bodies.size() == 1);
+    CHECK(r.bodies[0].slide == Approx(expected).epsilon(0.03));
+    // The floor carries the block's weight and the friction, |(mu m g, 0, m g)| = m g sqrt(1 + mu^2),
+    // throughout the slide; the peak lies above by the transient of the suddenly applied table
+    // acceleration (it rocks the block on its stiff contact: 7.7 % measured), below 10 %.
+    const double steady = 20 * g * std::sqrt(1 + mu * mu);
+    CHECK(r.bodies[0].floor_force_peak >= 0.995 * steady);
+    CHECK(r.bodies[0].floor_force_peak <= 1.10 * steady);
+    CHECK(r.bodies[0].item_force_peak == 0.0);
+  }
+}
+
+TEST_CASE("the same realisations.csv with 1 and 2 workers, and after a resume", "[study]") {
+  const StudySpec s = study_of(block_study(3));
+  StudyOptions one;
+  one.out_dir = fresh_dir("study_one_worker");
+  one.workers = 1;
+  one.progress = false;
+  REQUIRE(run_study(s, one) == "completed");
+  StudyOptions two = one;
+  two.out_dir = fresh_dir("study_two_workers");
+  two.workers = 2;
+  REQUIRE(run_study(s, two) == "completed");
+  const std::string reference = ffem_test::slurp(one.out_dir + "/realisations.csv");
+  REQUIRE(reference.size() > 100);
+  CHECK(ffem_test::slurp(two.out_dir + "/realisations.csv") == reference);
+  for (const char* f : {"probabilities.csv", "distributions.csv", "fragility.csv"})
+    CHECK(ffem_test::slurp(two.out_dir + "/" + f) == ffem_test::slurp(one.out_dir + "/" + f));
+
+  // A study killed after 2 of its 6 runs, with a torn record and a temporary file left behind.
+  StudyOptions killed = one;
+  killed.out_dir = fresh_dir("study_resumed");
+  {
+    StudyFolder folder(s, killed);
+    folder.record(run_realisation(s, 0));
+    folder.record(run_realisation(s, 4));
+  }
+  std::ofstream(killed.out_dir + "/runs/run_00000002.json") << "{\"run\": 2, \"realis";  // torn
+  std::ofstream(killed.out_dir + "/runs/run_00000003.json.tmp") << "{}";
+  // Resuming without --resume is refused: the folder holds a study.
+  CHECK_THROWS_WITH(StudyFolder(s, killed), Contains("--resume continues it"));
+  killed.resume = true;
+  StudyFolder folder(s, killed);
+  CHECK(folder.resumed() == 2);
+  CHECK(folder.pending() == std::vector<long>{1, 2, 3, 5});  // nothing lost, nothing repeated
+  REQUIRE(run_local(folder, folder.pending(), 2, nullptr, false));
+  folder.finish("completed", {});
+  CHECK(ffem_test::slurp(killed.out_dir + "/realisations.csv") == reference);
+  // Another study cannot be resumed in this folder.
+  json other = block_study(3);
+  other["seed"] = 99;
+  CHECK_THROWS_WITH(StudyFolder(study_of(other), killed), Contains("holds another study"));
+}
+
+TEST_CASE("a stopped study keeps what it finished and resumes the rest", "[study]") {
+  const StudySpec s = study_of(block_study(3));
+  StudyOptions o;
+  o.out_dir = fresh_dir("study_stopped");
+  o.workers = 1;
+  o.progress = false;
+  const std::atomic<bool> stop{true};  // stopped before the first run
+  CHECK(run_study(s, o, &stop) == "stopped");
+  const json summary = json::parse(ffem_test::slurp(o.out_dir + "/summary.json"));
+  CHECK(summary["status"] == "stopped");
+  CHECK(summary["pending"] == 6);
+  o.resume = true;
+  CHECK(run_study(s, o) == "completed");
+  CHECK(json::parse(ffem_test::slurp(o.out_dir + "/summary.json"))["done"] == 6);
+}
+
+TEST_CASE("a realisation whose scene is refused is recorded as failed with its diagnosis", "[study]") {
+  // A second block 0.45 m away: a placement perturbation of up to 0.2 m puts some realisations' blocks
+  // into each other (the footprints are 0.4 m wide), which validation refuses.
+  json j = block_study(20);
+  json second = j["scene"]["items"][0];
+  second["name"] = "crate2";
+  second["x"] = 0.45;
+  j["scene"]["items"].push_back(second);
+  j["perturbations"] = {{"x", 0.2}, {"items", {"crate2"}}};
+  j["scene"]["duration"] = 0.05;
+  const StudySpec s = study_of(j);
+  int failed = 0, completed = 0;
+  for (long run = 0; run < 20; ++run) {
+    const RunResult r = run_realisation(s, run);
+    const double dx = realisation_parameters(s, run).items[0].dx;
+    if (dx < -0.05) {  // the footprints overlap
+      CHECK(r.status == "failed");
+      CHECK_THAT(r.diagnosis, Contains("crate2"));
+      ++failed;
+    } else {
+      CHECK(r.status == "completed");
+      ++completed;
+    }
+  }
+  CHECK(failed > 0);
+  CHECK(completed > 0);
+}
+
+TEST_CASE("study files: round trip and named errors", "[study]") {
+  const json j = block_study(2);
+  const StudySpec s = study_of(j);
+  CHECK(to_json(study_of(to_json(s))) == to_json(s));
+
+  const auto error_of = [](json bad) {
+    try {
+      (void)parse_study_json(bad, "bad_study.json");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  json bad = j;
+  bad["realisation"] = 3;
+  CHECK_THAT(error_of(bad), Contains("bad_study.json") && Contains("realisation"));
+  bad = j;
+  bad["intensity"]["levels"] = {1.0, -2.0};
+  CHECK_THAT(error_of(bad), Contains("intensity.levels[1]") && Contains("-2"));
+  bad = j;
+  bad["intensity"]["measure"] = "pgv";
+  CHECK_THAT(error_of(bad), Contains("intensity.measure") && Contains("record files only"));
+  bad = j;
+  bad["perturbations"]["items"] = {"sofa"};
+  CHECK_THAT(error_of(bad), Contains("perturbations.items[0]") && Contains("sofa"));
+  bad = j;
+  bad["perturbations"]["start_time"] = 1.0;
+  CHECK_THAT(error_of(bad), Contains("perturbations.start_time") && Contains("record files only"));
+  bad = j;
+  bad["perturbations"]["friction"] = 1.5;
+  CHECK_THAT(error_of(bad), Contains("perturbations.friction") && Contains("1.5"));
+  bad = j;
+  bad["compare"] = {{{"name", "odd"}, {"scene", {{"contact", {{"law", "nope"}}}}}}};
+  CHECK_THAT(error_of(bad), Contains("variant 'odd'") && Contains("contact.law") && Contains("nope"));
+  bad = j;
+  bad["scene"] = "no_such_scene.json";
+  CHECK_THAT(error_of(bad), Contains("scene") && Contains("cannot open"));
+  bad = j;
+  bad["name"] = "a/b";
+  CHECK_THAT(error_of(bad), Contains("name") && Contains("a/b"));
+  bad = j;
+  bad["realisations"] = 0;
+  CHECK_THAT(error_of(bad), Contains("realisations") && Contains("got 0"));
+  // A study file with a syntax error names its line.
+  const std::string path = ffem_test::tmp("broken_study.json");
+  std::ofstream(path) << "{\n  \"name\": \"x\",\n  \"seed\": ,\n}\n";
+  CHECK_THROWS_WITH(parse_study(path), Contains("broken_study.json") && Contains(":3"));
+}
