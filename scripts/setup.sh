@@ -3,6 +3,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 pkgs="cmake g++ make libeigen3-dev zlib1g-dev libcgal-dev libboost-dev catch2 nlohmann-json3-dev libcli11-dev libbenchmark-dev"
+# Open MPI for furniture_study's ranks (and its test): only for a full build, not the main job's.
+[ -z "${FFEM_TARGETS:-}" ] && pkgs="$pkgs libopenmpi-dev openmpi-bin"
 missing=""
 for p in $pkgs; do dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"; done
 if [ -n "$missing" ]; then
