@@ -250,6 +250,17 @@ TEST_CASE("study files: round trip and named errors", "[study]") {
   bad["compare"] = {{{"name", "odd"}, {"scene", {{"contact", {{"law", "nope"}}}}}}};
   CHECK_THAT(error_of(bad), Contains("variant 'odd'") && Contains("contact.law") && Contains("nope"));
   bad = j;
+  bad["compare"] = {{{"name", "fine"}, {"fidelity", "fine"}}};
+  CHECK_THAT(error_of(bad), Contains("compare[0].fidelity") && Contains("fine"));
+  // A fidelity variant sets every item's fidelity.
+  json fid = j;
+  fid["scene"]["items"][0]["fidelity"] = "full";
+  fid["compare"] = {{{"name", "as_given"}}, {{"name", "rigid"}, {"fidelity", "rigid"}}};
+  CHECK_THROWS_WITH(parse_study_json(fid, "fid.json"), Contains("variant 'as_given'") && Contains("rigid"));
+  fid["compare"][0]["fidelity"] = "rigid";
+  CHECK(to_json(study_of(to_json(study_of(fid)))) == to_json(study_of(fid)));
+  CHECK(realisation_scene_json(study_of(fid), realisation_parameters(study_of(fid), 0), 1)["items"][0]["fidelity"] == "rigid");
+  bad = j;
   bad["scene"] = "no_such_scene.json";
   CHECK_THAT(error_of(bad), Contains("scene") && Contains("cannot open"));
   bad = j;

@@ -152,6 +152,13 @@ class StudyFolder {
     return failed_;
   }
   long resumed() const { return resumed_; }
+  // Every result so far, in run order.
+  std::vector<RunResult> results() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::vector<RunResult> out;
+    for (const auto& [run, r] : results_) out.push_back(r);
+    return out;
+  }
 
   // Keeps a result (a stopped run is not one) and writes it atomically: a study killed at any moment
   // leaves only whole records.
@@ -164,11 +171,7 @@ class StudyFolder {
 
   // Writes realisations.csv, the statistics and summary.json (last: its presence means the others are whole).
   void finish(const std::string& status, const StudyTiming& timing) const {
-    std::vector<RunResult> rows;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      for (const auto& [run, r] : results_) rows.push_back(r);
-    }
+    const std::vector<RunResult> rows = results();
     detail::write_text_atomically(dir_ / "realisations.csv", realisations_csv(study_, rows));
     const StudyReport report = study_report(study_, rows);
     write_report(report, dir_);

@@ -55,6 +55,9 @@ struct PerturbationSpec {
 struct StudyVariant {
   std::string name;
   nlohmann::json patch = nlohmann::json::object();
+  // Every item's fidelity ("full", "coarse", "rigid", "auto"), set after the patch: comparing
+  // fidelities needs no copy of the item list. Empty: as the scene says.
+  std::string fidelity;
 };
 
 // What the statistics call a damage state of an item (study/report.hpp).
@@ -148,7 +151,12 @@ namespace detail {
 // perturbations (study/realisation.hpp applies those).
 inline nlohmann::json study_scene_json(const StudySpec& s, int variant, int motion) {
   nlohmann::json scene = s.scene;
-  if (!s.variants.empty()) scene.merge_patch(s.variants[variant].patch);
+  if (!s.variants.empty()) {
+    scene.merge_patch(s.variants[variant].patch);
+    if (const std::string& f = s.variants[variant].fidelity; !f.empty() && scene.contains("items"))
+      for (auto& item : scene["items"])
+        if (item.is_object()) item["fidelity"] = f;
+  }
   if (!s.motions.empty()) scene["ground_motion"] = s.motions[motion].ground_motion;
   if (s.duration) scene["duration"] = *s.duration;
   return scene;
@@ -221,13 +229,17 @@ inline StudySpec parse_study_json(const nlohmann::json& j, const std::string& so
   }
   r.array("compare", [&](const nlohmann::json& v, const std::string& path) {
     const ObjectReader c(v, path, s.source);
-    c.allow_only({"name", "scene"});
+    c.allow_only({"name", "scene", "fidelity"});
     StudyVariant variant;
     variant.name = c.string("name", "variant_" + std::to_string(s.variants.size() + 1));
     if (const auto why = detail::study_name_problem(variant.name); !why.empty()) c.fail(c.path("name"), why);
-    if (!c.has("scene") || !c.raw("scene").is_object())
-      c.fail(c.path("scene"), "required: a merge patch of the base scene, e.g. {\"contact\": {\"law\": \"stiff\"}}");
-    variant.patch = c.raw("scene");
+    if (c.has("scene") && !c.raw("scene").is_object())
+      c.fail(c.path("scene"), "expected a merge patch of the base scene, e.g. {\"contact\": {\"law\": \"stiff\"}}");
+    if (c.has("scene")) variant.patch = c.raw("scene");
+    variant.fidelity = c.string("fidelity", "");
+    if (!variant.fidelity.empty() && variant.fidelity != "full" && variant.fidelity != "coarse" &&
+        variant.fidelity != "rigid" && variant.fidelity != "auto")
+      c.fail(c.path("fidelity"), "unknown fidelity \"" + variant.fidelity + "\"; expected one of: full, coarse, rigid, auto");
     for (const auto& other : s.variants)
       if (other.name == variant.name) c.fail(c.path("name"), "duplicate variant name \"" + variant.name + "\"");
     s.variants.push_back(std::move(variant));
@@ -300,7 +312,10 @@ inline nlohmann::json to_json(const StudySpec& s) {
   for (const auto& m : s.motions) motions.push_back({{"name", m.name}, {"ground_motion", m.ground_motion}});
   if (!s.motions.empty()) j["ground_motions"] = motions;
   json variants = json::array();
-  for (const auto& v : s.variants) variants.push_back({{"name", v.name}, {"scene", v.patch}});
+  for (const auto& v : s.variants) {
+    variants.push_back({{"name", v.name}, {"scene", v.patch}});
+    if (!v.fidelity.empty()) variants.back()["fidelity"] = v.fidelity;
+  }
   if (!s.variants.empty()) j["compare"] = variants;
   if (s.duration) j["duration"] = *s.duration;
   return j;
