@@ -27,7 +27,7 @@ const char* study_json = R"({
     "duration": 5.0,
     "outputs": {"figures": false}
   },
-  "intensity": {"measure": "pga", "levels": [2.0, 3.0, 4.0, 5.0, 6.0, 8.0]},
+  "intensity": {"measure": "pga", "levels": [2.0, 4.0, 6.0, 8.0, 10.0, 12.0]},
   "ground_motions": [
     {"name": "synthetic_1", "ground_motion": {"source": "synthetic", "seed": 1, "duration": 5.0, "dimensions": "3d"}},
     {"name": "synthetic_2", "ground_motion": {"source": "synthetic", "seed": 2, "duration": 5.0, "dimensions": "3d"}},
@@ -70,7 +70,7 @@ int main() {
       std::printf("lognormal fit: median PGA %.2f m/s^2 [%.2f, %.2f], dispersion beta %.2f [%.2f, %.2f]\n",
                   f.fit.theta, f.interval.theta_lo, f.interval.theta_hi, f.fit.beta, f.interval.beta_lo,
                   f.interval.beta_hi);
-      for (double pga : {3.0, 5.0, 7.0})
+      for (double pga : {4.0, 8.0, 12.0})
         std::printf("  fitted P(overturned | PGA = %.0f m/s^2) = %.2f\n", pga, fragility_probability(f.fit, pga));
     }
   std::printf("results in %s (realisations.csv, probabilities.csv, fragility.csv, ...)\n", folder.dir().c_str());

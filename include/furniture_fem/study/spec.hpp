@@ -17,6 +17,7 @@
 
 #include "../scene/json_reader.hpp"
 #include "../scene/reader.hpp"
+#include "../scene/validation.hpp"
 
 namespace furniture_fem {
 
