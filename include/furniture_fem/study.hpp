@@ -6,4 +6,5 @@
 #include "study/realisation.hpp"
 #include "study/outcomes.hpp"
 #include "study/report.hpp"
+#include "study/figures.hpp"
 #include "study/runner.hpp"

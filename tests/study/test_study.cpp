@@ -1,11 +1,12 @@
 // Studies (issue 14): the study file and its named errors, realisation parameters from the seed and
 // the index alone, runs whose outcomes match closed-form Coulomb sliding with each realisation's own
 // perturbed friction, the same realisations.csv with 1 and 2 workers and after a resume, and failed
-// realisations recorded with their diagnosis.
+// realisations recorded with their diagnosis; the study's figures from hand-made results.
 #include <catch2/catch.hpp>
 
 #include <furniture_fem/study/runner.hpp>
 
+#include "../figures/png_reader.hpp"
 #include "../support/test_files.hpp"
 
 #include <atomic>
@@ -273,4 +274,116 @@ TEST_CASE("study files: round trip and named errors", "[study]") {
   const std::string path = ffem_test::tmp("broken_study.json");
   std::ofstream(path) << "{\n  \"name\": \"x\",\n  \"seed\": ,\n}\n";
   CHECK_THROWS_WITH(parse_study(path), Contains("broken_study.json") && Contains(":3"));
+}
+
+namespace {
+
+// Hand-made results (no simulation) of a study at pga 1..4 m/s^2, ten realisations a level: "crate"
+// slides in 3, 5, 8, 10 of ten (the realisation's index within its level below 2.5 x level) and tilts
+// 2 x level + j / 2 deg; "shelf" never slides and tilts 5 x level deg.
+StudySpec figure_study() {
+  StudySpec s;
+  s.intensity.measure = IntensityMeasure::pga;
+  s.intensity.levels = {1.0, 2.0, 3.0, 4.0};
+  s.realisations = 10;
+  return s;
+}
+BodyOutcome body(std::string name, double slide, double max_tilt_deg) {
+  BodyOutcome b;
+  b.name = std::move(name), b.state = "standing", b.slide = slide, b.max_tilt_deg = max_tilt_deg;
+  return b;
+}
+std::vector<RunResult> figure_results(const StudySpec& s) {
+  std::vector<RunResult> out;
+  for (long r = 0; r < s.num_runs(); ++r) {
+    const double level = s.intensity.levels[std::size_t(r / 10)], j = double(r % 10);
+    RunResult x;
+    x.run = x.realisation = r;
+    x.status = "completed";
+    x.bodies.push_back(body("crate", j < 2.5 * level ? 0.02 * (1 + j) + 0.06 : 0.01, 2 * level + j / 2));
+    x.bodies.push_back(body("shelf", 0.0, 5 * level));
+    out.push_back(x);
+  }
+  return out;
+}
+bool near_colour(const Image& img, int x, int y, RGB c) {
+  for (int dy = -2; dy <= 2; ++dy)
+    for (int dx = -2; dx <= 2; ++dx)
+      if (img.get(x + dx, y + dy) == c) return true;
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("study figures: fragility fits with observed fractions, tilts against intensity, slide histograms",
+          "[study][figures]") {
+  const StudySpec s = figure_study();
+  const std::vector<RunResult> results = figure_results(s);
+  const StudyReport rep = study_report(s, results);
+  const auto slid = std::find_if(rep.fragility.begin(), rep.fragility.end(),
+                                 [](const FragilityRow& f) { return f.body == "crate" && f.state == "slid"; });
+  REQUIRE(slid != rep.fragility.end());
+  REQUIRE(slid->fit.identifiable);
+
+  const std::string dir = fresh_dir("study_figures");
+  std::filesystem::create_directories(dir);
+  write_study_figures(s, rep, results, dir);
+  const int two_panels = detail::study_figure_height(2), one_panel = detail::study_figure_height(1);
+  for (const auto& [file, height] : {std::pair<std::string, int>{"fragility.png", two_panels},
+                                     {"max_tilt_vs_intensity.png", one_panel},
+                                     {"outcome_histograms.png", two_panels}}) {
+    INFO(file);
+    const std::string bytes = ffem_test::slurp(dir + "/" + file);
+    REQUIRE(bytes.size() > 1000);
+    CHECK(bytes.compare(0, 8, std::string("\x89PNG\r\n\x1a\n", 8)) == 0);
+    const png_test::Png png = png_test::decode_file(dir + "/" + file);
+    CHECK(png.width == detail::study_figure_width);
+    CHECK(png.height == height);
+  }
+
+  // The fitted "slid" curve of the crate crosses P = 0.5 at its median, in its colour (the first);
+  // without the fits, that pixel is not in it.
+  const LinePlot plot = detail::fragility_plot(s, rep);
+  const PanelLayout& crate = plot.layout(detail::study_figure_width, two_panels).panels.at(0);
+  const int x = int(std::lround(crate.x.to_pixel(slid->fit.theta))), y = int(std::lround(crate.y.to_pixel(0.5)));
+  const png_test::Png png = png_test::decode_file(dir + "/fragility.png");
+  const RGB at{png.at(x, y, 0), png.at(x, y, 1), png.at(x, y, 2)};
+  CHECK((at == palette_color(0) || near_colour(plot.render(detail::study_figure_width, two_panels), x, y, palette_color(0))));
+  StudyReport no_fits = rep;
+  no_fits.fragility.clear();
+  CHECK_FALSE(near_colour(detail::fragility_plot(s, no_fits).render(detail::study_figure_width, two_panels), x, y, palette_color(0)));
+  // The observed fractions alone still make the figure.
+  const std::string without = fresh_dir("study_figures_no_fit");
+  std::filesystem::create_directories(without);
+  write_study_figures(s, no_fits, results, without);
+  CHECK(std::filesystem::exists(without + "/fragility.png"));
+  CHECK(std::filesystem::file_size(without + "/fragility.png") != std::filesystem::file_size(dir + "/fragility.png"));
+  // Nothing completed: no tilt or slide figure.
+  std::vector<RunResult> diverged = results;
+  for (auto& r : diverged) r.status = "diverged";
+  const std::string none = fresh_dir("study_figures_none");
+  std::filesystem::create_directories(none);
+  write_study_figures(s, study_report(s, diverged), diverged, none);
+  CHECK_FALSE(std::filesystem::exists(none + "/max_tilt_vs_intensity.png"));
+  CHECK_FALSE(std::filesystem::exists(none + "/outcome_histograms.png"));
+}
+
+TEST_CASE("a figure that cannot be written costs a warning, not the study's results", "[study][figures]") {
+  const StudySpec s = study_of(block_study(3));
+  StudyOptions opt;
+  opt.out_dir = fresh_dir("study_figure_blocked");
+  opt.progress = false;
+  StudyFolder folder(s, opt);
+  for (long r = 0; r < s.num_runs(); ++r) {  // hand-made results: no simulation needed here
+    RunResult x;
+    x.run = x.realisation = r;
+    x.status = "completed";
+    x.bodies.push_back(body("crate", 0.1 * double(r), 1.0));
+    folder.record(x);
+  }
+  std::filesystem::create_directories(opt.out_dir + "/fragility.png");  // a folder where the figure goes
+  REQUIRE_NOTHROW(folder.finish("completed", {}));
+  CHECK(std::filesystem::exists(opt.out_dir + "/summary.json"));
+  CHECK(ffem_test::slurp(opt.out_dir + "/realisations.csv").size() > 100);
+  CHECK(std::filesystem::exists(opt.out_dir + "/probabilities.csv"));
 }

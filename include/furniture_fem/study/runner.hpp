@@ -5,7 +5,8 @@
 //   folder.pending()                          the runs not yet done (every run, or those a killed study left)
 //   folder.record(result)                     one result, written atomically as runs/<run>.json
 //   run_local(folder, pending, workers, stop) one thread per worker, runs handed out one at a time
-//   folder.finish(status, timing)             realisations.csv, summary.json and the statistics (report.hpp)
+//   folder.finish(status, timing)             realisations.csv, the statistics (report.hpp), the figures
+//                                             (figures.hpp), summary.json
 //
 // Runs are handed out dynamically (a run takes 0.1 to 10 times the median), and every result depends
 // only on the study and the run's index: realisations.csv is the same to the bit whatever the number
@@ -28,6 +29,7 @@
 #include <thread>
 #include <vector>
 
+#include "figures.hpp"
 #include "outcomes.hpp"
 #include "report.hpp"
 #include "spec.hpp"
@@ -169,12 +171,20 @@ class StudyFolder {
     if (results_.emplace(r.run, r).second && r.status != "completed") ++failed_;
   }
 
-  // Writes realisations.csv, the statistics and summary.json (last: its presence means the others are whole).
+  // Writes realisations.csv, the statistics, the figures and summary.json (last: its presence means the
+  // others are whole; a figure that could not be written is only warned about).
   void finish(const std::string& status, const StudyTiming& timing) const {
     const std::vector<RunResult> rows = results();
     detail::write_text_atomically(dir_ / "realisations.csv", realisations_csv(study_, rows));
     const StudyReport report = study_report(study_, rows);
     write_report(report, dir_);
+    // The figures are a view of the files above: one that cannot be written costs a warning, never
+    // the study (its CSV results are already whole, and summary.json still follows).
+    try {
+      write_study_figures(study_, report, rows, dir_);
+    } catch (const OutputError& e) {
+      std::fprintf(stderr, "furniture_study: warning: study figures not written: %s\n", e.what());
+    }
     long failed_runs = 0, run_seconds_n = 0;
     double run_seconds = 0;
     for (const auto& r : rows) {
