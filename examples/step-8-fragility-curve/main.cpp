@@ -9,6 +9,7 @@
 #include <furniture_fem/study/runner.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <string>
 #include <thread>
@@ -48,10 +49,12 @@ int main() {
               study.num_motions(), study.realisations);
 
   // What run_study does, in its three parts: the folder, the runs on one worker per core, the outputs.
+  const auto start = std::chrono::steady_clock::now();
   StudyFolder folder(study, opt);
   StudyTiming timing;
   timing.workers = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   run_local(folder, folder.pending(), timing.workers, nullptr, opt.progress);
+  timing.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   folder.finish("completed", timing);
 
   // The statistics, from the results in memory (the same numbers as the CSV files).
