@@ -80,6 +80,16 @@ TEST_CASE("a realisation's parameters follow from the seed and its index alone",
   const RealisationParameters nf = realisation_parameters(study_of(no_friction), 17);
   CHECK(nf.items[0].dx == p17.items[0].dx);
   CHECK(nf.items[0].friction_factor == 1.0);
+  // Streams by name: a motion added before the others leaves their rooms as they were.
+  json one_motion = j, two_motions = j;
+  const json points = j["scene"]["ground_motion"];
+  one_motion["ground_motions"] = {{{"name", "pulse"}, {"ground_motion", points}}};
+  two_motions["ground_motions"] = {{{"name", "other"}, {"ground_motion", points}}, {{"name", "pulse"}, {"ground_motion", points}}};
+  const StudySpec s1 = study_of(one_motion), s2 = study_of(two_motions);
+  const RealisationParameters a = realisation_parameters(s1, 17), b = realisation_parameters(s2, 50 + 17);
+  REQUIRE(s2.motion_name(b.motion_index) == "pulse");
+  CHECK(a.items[0].dx == b.items[0].dx);
+  CHECK(a.items[0].dx != realisation_parameters(s2, 17).items[0].dx);  // motion "other": another room
   // Another seed, other values.
   json other_seed = j;
   other_seed["seed"] = 8;

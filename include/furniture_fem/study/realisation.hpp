@@ -5,8 +5,8 @@
 //   nlohmann::json realisation_scene_json(study, parameters, variant)  the scene it runs, as a file takes it
 //
 // Realisations are numbered level-major: index = (level * motions + motion) * realisations + replicate.
-// The perturbations are drawn from streams keyed by (motion, replicate, item, factor), not by the
-// level: replicate r of a motion is the same room at every intensity level, as in incremental dynamic
+// The perturbations are drawn from streams keyed by (motion name, replicate, item name, factor), not
+// by the level: replicate r of a motion is the same room at every intensity level, as in incremental dynamic
 // analysis, so a fragility curve compares levels on the same rooms; and a variant runs the same room
 // as every other variant (paired comparisons). Each factor has its own stream: turning one
 // perturbation on or off leaves the others' values unchanged.
@@ -41,10 +41,18 @@ namespace detail {
 enum PerturbationFactor : std::uint64_t { f_x = 1, f_y, f_yaw, f_friction, f_alpha, f_mass, f_start };
 inline constexpr std::uint64_t motion_wide = 0xffffffffULL;  // the item key of a draw that is not per item
 
-inline double symmetric_draw(const StudySpec& s, int motion, int replicate, std::uint64_t item, std::uint64_t factor,
-                             double half_width) {
+// A stream key from a name (an item's, a motion's): the same name, the same stream, wherever it stands
+// in its list, so adding or reordering motions or items leaves the others' values unchanged.
+inline std::uint64_t name_key(const std::string& name) {
+  std::uint64_t key = 0;
+  for (unsigned char c : name) key = mix64(key ^ c);
+  return key;
+}
+
+inline double symmetric_draw(const StudySpec& s, std::uint64_t motion, int replicate, std::uint64_t item,
+                             std::uint64_t factor, double half_width) {
   if (!(half_width > 0)) return 0;
-  RandomStream r(s.seed, {std::uint64_t(motion), std::uint64_t(replicate), item, factor});
+  RandomStream r(s.seed, {motion, std::uint64_t(replicate), item, factor});
   return r.uniform(-half_width, half_width);
 }
 
@@ -67,17 +75,16 @@ inline RealisationParameters realisation_parameters(const StudySpec& s, long ind
   p.motion_index = static_cast<int>((index / s.realisations) % s.num_motions());
   p.level_index = static_cast<int>(index / (long(s.realisations) * s.num_motions()));
   p.level = s.intensity.levels[p.level_index];
-  const int m = p.motion_index, r = p.replicate;
+  const std::uint64_t m = detail::name_key(s.motion_name(p.motion_index));
+  const int r = p.replicate;
   if (s.perturb.start_time > 0) {
-    RandomStream st(s.seed, {std::uint64_t(m), std::uint64_t(r), detail::motion_wide, detail::f_start});
+    RandomStream st(s.seed, {m, std::uint64_t(r), detail::motion_wide, detail::f_start});
     p.start_shift = st.uniform(0.0, s.perturb.start_time);
   }
   if (!s.perturb.any()) return p;
-  // Items are keyed by their name: the same item, the same stream, wherever it stands in the list.
   const auto names = detail::perturbed_items(s);
   for (const auto& name : names) {
-    std::uint64_t key = 0;
-    for (unsigned char c : name) key = mix64(key ^ c);  // by name: reordering the list changes nothing
+    const std::uint64_t key = detail::name_key(name);
     ItemPerturbation ip;
     ip.item = name;
     const auto draw = [&](detail::PerturbationFactor f, double half) { return detail::symmetric_draw(s, m, r, key, f, half); };
