@@ -69,6 +69,23 @@ inline void merge_into_faces(const Model& model, const std::array<int, 3>& tri, 
     if (std::find(same->vertices.begin(), same->vertices.end(), n) == same->vertices.end()) same->vertices.push_back(n);
 }
 
+// A face in a form that does not depend on how the hull was triangulated or listed: its vertices
+// ascending; its frame the two smallest vertices and the smallest next one not in line with them,
+// ordered so that the frame's normal points out as before.
+inline void canonical_frame(const Model& model, SupportFace& f) {
+  const Vec3 out = unit_normal(model, f.frame);
+  std::sort(f.vertices.begin(), f.vertices.end());
+  const auto X = [&](int n) -> const Vec3& { return model.node(n).X; };
+  const int a = f.vertices[0], b = f.vertices[1];
+  for (std::size_t k = 2; k < f.vertices.size(); ++k) {
+    const int c = f.vertices[k];
+    const Vec3 n = (X(b) - X(a)).cross(X(c) - X(a));
+    if (n.norm() <= 1e-9 * (X(b) - X(a)).squaredNorm()) continue;  // in line with a and b
+    f.frame = n.dot(out) > 0 ? std::array<int, 3>{a, b, c} : std::array<int, 3>{a, c, b};
+    return;
+  }
+}
+
 // Each face's share: the body's nodes on its plane (a member's nodes lie on it to round-off) per vertex.
 inline void set_shares(const Model& model, const std::vector<int>& nodes, std::vector<SupportFace>& faces) {
   constexpr double on_plane = 1e-6;  // m
@@ -102,12 +119,18 @@ inline SupportGeometry support_geometry(const Model& model, const std::vector<in
   };
   for (auto v : hull.vertices()) g.vertices.push_back(node_at(hull.point(v)));
   std::sort(g.vertices.begin(), g.vertices.end());
+  // CGAL's listing of the hull depends on the order of the nodes and on where its data lie in memory
+  // (a process's heap layout), and so does the triangulation of a flat face. Taken as listed, the
+  // faces' frames (hence their normals, to round-off) and the order of their vertices changed from
+  // one process to another, and a chaotic run with them. So each face is put in a canonical form.
   for (auto f : hull.faces()) {
     std::array<int, 3> tri{};
     int k = 0;
     for (auto v : CGAL::vertices_around_face(hull.halfedge(f), hull)) tri[k++] = node_at(hull.point(v));
     support::merge_into_faces(model, tri, g.faces);
   }
+  for (auto& f : g.faces) support::canonical_frame(model, f);
+  std::sort(g.faces.begin(), g.faces.end(), [](const SupportFace& a, const SupportFace& b) { return a.frame < b.frame; });
   support::set_shares(model, nodes, g.faces);
   return g;
 }
