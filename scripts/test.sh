@@ -8,9 +8,10 @@ tests="ctest --test-dir build --output-on-failure -j 2"
 # A user's machine has no ../shared: under CI the tests run with it hidden (an empty read-only tmpfs
 # mounted over it in a private mount namespace; the folder itself is not touched). Where that is not
 # possible (not root), they run as they are.
-if [ "${CI:-}" = "true" ] && [ -d ../shared ] && unshare -m true 2>/dev/null; then
+hide="mount -t tmpfs -o size=1m,mode=0555 ffem-no-shared ../shared"
+if [ "${CI:-}" = "true" ] && [ -d ../shared ] && unshare -m sh -c "$hide" 2>/dev/null; then
   echo "tests: ../shared hidden, as on a user's machine"
-  unshare -m bash -c "mount -t tmpfs -o size=1m,mode=0555 ffem-no-shared ../shared && $tests"
+  unshare -m sh -c "$hide && $tests"
 else
   $tests
 fi
