@@ -177,6 +177,46 @@ class RoomContact {
   // The linearisations of the item-item pairs between two rigid implicit bodies (the simulation
   // solves such bodies together), of the last add_forces.
   const std::vector<PairContactTangent>& pair_tangents() const { return pair_tangents_; }
+  // The floor and wall forces of the last add_forces on implicit bodies' nodes (node, force; a node
+  // against two planes appears twice).
+  const std::vector<std::pair<int, Vec3>>& plane_forces() const { return plane_applied_; }
+
+  // One implicit body's floor and wall contacts at another state of the step (a trial of its solve),
+  // from the committed history, nothing recorded: each contact's force and linearisation, and the
+  // status (status_of) of every (node, plane) of the body. A body whose contact is not implicit has
+  // none (empty status). last_status(body) gives the statuses of the last add_forces, in the same order.
+  struct BodyPlaneContacts {
+    std::vector<NodalContactTangent> tangents;  // per contact (a node against two planes: twice)
+    std::vector<Vec3> forces;                   // the force of each of those contacts
+    std::vector<char> status;
+  };
+  BodyPlaneContacts body_plane_contacts(const ContactView& view, int body) const {
+    BodyPlaneContacts out;
+    if (!implicit || !bodies_[body].implicit) return out;
+    const auto& sg = support_[body];
+    for (size_t p = 0; p < planes_.size(); ++p) {
+      const detail::SupportFace* face = sg.faces.empty() ? nullptr : sg.face_towards(view.x, planes_[p].normal);
+      for (int n : view.model.body(body).nodes) {
+        if (!plane_node_[n]) continue;
+        const bool on_face = face && std::find(face->vertices.begin(), face->vertices.end(), n) != face->vertices.end();
+        ContactState st = node_state_[n * planes_.size() + p];
+        const ContactForce cf = node_plane_force(view, n, p, on_face ? face->share : 1.0, st);
+        out.status.push_back(status_of(cf));
+        if (!cf.in_contact) continue;
+        out.tangents.push_back({n, cf.K, cf.C, view.x[n], Vec3(view.v.template segment<3>(6 * n))});
+        out.forces.push_back(cf.on_a);
+      }
+    }
+    return out;
+  }
+  std::vector<char> last_status(const Model& model, int body) const {
+    std::vector<char> status;
+    if (!implicit || !bodies_[body].implicit || plane_status_.empty()) return status;
+    for (size_t p = 0; p < planes_.size(); ++p)
+      for (int n : model.body(body).nodes)
+        if (plane_node_[n]) status.push_back(plane_status_[n * planes_.size() + p]);
+    return status;
+  }
 
   // Floor and wall forces again at the end state of a carried-over step: their forces of the last
   // evaluation are taken out of f and the new ones put in; the history to commit is the new one.
@@ -231,48 +271,70 @@ class RoomContact {
     tangents_.clear();
     plane_applied_.clear();
     update_support_shares(view);
+    plane_status_.resize(share_.size());
     for (int n : plane_nodes_) {
-      if (only_implicit && !bodies_[model.node(n).body].implicit) continue;
-      const Vec3& x = view.x[n];
       const int body = model.node(n).body;
+      if (only_implicit && !bodies_[body].implicit) continue;
       for (size_t p = 0; p < planes_.size(); ++p) {
-        const RigidPlane& pl = planes_[p];
-        const double l = (x - pl.point).dot(pl.normal);
-        const double L = half_width_[n];
-        if (l > L || !pl.contains_projection(x)) {
-          node_trial_[n * planes_.size() + p] = ContactState{};  // out of contact: history forgotten
-          continue;
-        }
-        ContactKinematics k;
-        k.l = l;  // behind the plane: g > 1 and the penalty keeps growing
-        k.L = L;
-        k.n = pl.normal;
-        k.v = view.v.template segment<3>(6 * n);
-        k.long_axis = long_axis(body, view);
-        k.dt = view.dt;
-        ContactParams prm = pl.is_wall ? bodies_[body].wall : bodies_[body].floor;
-        if (!pl.is_wall && caster_[n] && bodies_[body].caster_mu >= 0) {
-          prm.mu = prm.mu_long = prm.mu_short = bodies_[body].caster_mu;
-        }
         const size_t si = n * planes_.size() + p;
-        if (share_[si] != 1.0) prm = scaled_penalty(prm, share_[si]);
         // Laws with history (stick-slip) start every evaluation from the committed state; commit()
         // keeps the trial of the last evaluation, so Newton iterations do not advance the history.
-        node_trial_[si] = node_state_[si];
-        const ContactForce cf = law_.force(k, prm, node_trial_[si]);
+        node_trial_[si] = node_state_[si];  // out of contact: reset (history forgotten) by the law
+        const ContactForce cf = node_plane_force(view, n, p, share_[si], node_trial_[si]);
+        plane_status_[si] = status_of(cf);
+        if (!cf.in_contact) continue;
+        const Vec3& x = view.x[n];
         f.template segment<3>(6 * n) += cf.on_a;
-        add_pair_force(body, pl.is_wall ? wall_id : floor_id, cf.on_a);
+        add_pair_force(body, planes_[p].is_wall ? wall_id : floor_id, cf.on_a);
         ++active_;
         if (!implicit || !bodies_[body].implicit) continue;
         plane_applied_.emplace_back(n, cf.on_a);
+        const Vec3 v = view.v.template segment<3>(6 * n);
         if (!tangents_.empty() && tangents_.back().node == n) {
           tangents_.back().K += cf.K;
           tangents_.back().C += cf.C;
         } else {
-          tangents_.push_back({n, cf.K, cf.C, x, k.v});
+          tangents_.push_back({n, cf.K, cf.C, x, v});
         }
       }
     }
+  }
+
+  // One node against one plane, standing for `share` nodes, from the history in `state` (advanced
+  // in place; reset when apart).
+  ContactForce node_plane_force(const ContactView& view, int n, size_t p, double share, ContactState& state) const {
+    const RigidPlane& pl = planes_[p];
+    const Vec3& x = view.x[n];
+    const double l = (x - pl.point).dot(pl.normal);
+    if (l > half_width_[n] || !pl.contains_projection(x)) {
+      state = ContactState{};
+      return {};
+    }
+    const int body = view.model.node(n).body;
+    ContactKinematics k;
+    k.l = l;  // behind the plane: g > 1 and the penalty keeps growing
+    k.L = half_width_[n];
+    k.n = pl.normal;
+    k.v = view.v.template segment<3>(6 * n);
+    k.long_axis = long_axis(body, view);
+    k.dt = view.dt;
+    ContactParams prm = pl.is_wall ? bodies_[body].wall : bodies_[body].floor;
+    if (!pl.is_wall && caster_[n] && bodies_[body].caster_mu >= 0) {
+      prm.mu = prm.mu_long = prm.mu_short = bodies_[body].caster_mu;
+    }
+    if (share != 1.0) prm = scaled_penalty(prm, share);
+    return law_.force(k, prm, state);
+  }
+
+  // A contact's status: 0 apart, 1 pushing (or any force, for a law that may pull), 2 touching with
+  // its force clamped at zero (a dashpot pulling harder than its spring pushes).
+  char status_of(const ContactForce& cf) const {
+    if (!cf.in_contact) return 0;
+    return cf.normal > 0 || !clamps_tensile() ? 1 : 2;
+  }
+  bool clamps_tensile() const {
+    if constexpr (requires { law_.clamp_tensile; }) return law_.clamp_tensile;
+    else return false;
   }
 
   // Each rigid body's support points against each plane: those of the hull face turned towards the
@@ -473,6 +535,7 @@ class RoomContact {
   std::vector<ImplicitPair> implicit_pairs_;  // the pairs behind pair_tangents_
   std::vector<char> rigid_;                   // per body: set_rigid
   std::vector<std::pair<int, Vec3>> plane_applied_;  // the floor and wall forces of the last evaluation
+  std::vector<char> plane_status_;  // per node and plane: status_of its contact at the last evaluation
   bool pair_history_ = false;
   std::vector<Vec3> x_broad_;  // node positions at the last broad phase
   Timings timings_;

@@ -56,6 +56,12 @@ struct SimulationOptions {
   bool finite_rotation_update = true;  // put each free body's rigid turn of a step on the finite rotation
   bool check_finite = true;     // stop with a diagnosis on NaN / divergence
   int threads = 1;              // threads over bodies (element forces, solves); 0: all hardware threads
+  // Carry-over: a rigid body whose floor or wall contacts change status within the step (a corner that
+  // touches, a face that leaves, a dashpot clamped) is solved again with its contacts at the step's
+  // end, at most this many times (docs/contact/implicit_contact.md, "Contacts that change within a
+  // step"). 0: the predictor's contacts for the whole step (a face arriving at 5 m/s then enters the
+  // floor unopposed for a step and its spring gives back energy it never took).
+  int contact_iterations = 4;
 };
 
 // What a contact model sees: the current state of the structure, all in the table frame.
@@ -112,6 +118,19 @@ template <class C>
 concept ImplicitContactPolicy = ContactPolicy<C> && requires(C c, const ContactView& view, Eigen::VectorXd& f) {
   { c.nodal_tangents() } -> std::convertible_to<const std::vector<NodalContactTangent>&>;
   c.end_of_step(view, f);
+};
+
+// An implicit contact policy that can evaluate one body's plane contacts at a trial state of the
+// step (body_plane_contacts: tangents, forces, statuses), with the statuses of its last evaluation
+// (last_status) and the forces that evaluation applied (plane_forces): a rigid body whose contacts
+// change status within a step is then solved again (SimulationOptions::contact_iterations).
+template <class C>
+concept BodyPlaneContactPolicy = ImplicitContactPolicy<C> && requires(const C c, const ContactView& view, const Model& m) {
+  { c.body_plane_contacts(view, 0).tangents } -> std::convertible_to<const std::vector<NodalContactTangent>&>;
+  { c.body_plane_contacts(view, 0).forces } -> std::convertible_to<const std::vector<Vec3>&>;
+  { c.body_plane_contacts(view, 0).status } -> std::convertible_to<const std::vector<char>&>;
+  { c.last_status(m, 0) } -> std::convertible_to<std::vector<char>>;
+  { c.plane_forces() } -> std::convertible_to<const std::vector<std::pair<int, Vec3>>&>;
 };
 
 // Where the time of the steps went (seconds, accumulated since the start). Wall clock: `contact`
@@ -502,11 +521,96 @@ class Simulation {
     BodyStepSums& s = sums_[b];
     timed(s.solve, [&] { residual_body(systems_[b], fext1_, s.residual_num, s.residual_den); });
     if (!update_body(b, s, true)) return;
+    if (systems_[b].rigid) timed(s.solve, [&] { resolve_changed_contacts({b}); });
     if (opt_.check_finite) {
       for (int n : systems_[b].nodes) s.not_finite = s.not_finite || !Du_.segment<6>(6 * n).allFinite();
       if (s.not_finite) return;
     }
     commit_body(b, s);
+  }
+
+  // A rigid body's (or rigid group's) step again while its floor and wall contacts at the step's end
+  // differ in status from those it was solved with: a Newton step from the end state with the
+  // contacts evaluated there (forces into fc1_ in place of the ones it held, their slopes into the
+  // 6 x 6 system; a group's pairs carried by their linearisation to that state). The forces a body
+  // ends with are the last evaluation's carried by its linearisation to the end state, as
+  // contact_at_end_of_step does for the others (which then skips the body). Statuses that stop
+  // changing mean the last solve had the right contacts; a status that keeps flipping (a clamp with no
+  // consistent side) is left after contact_iterations.
+  void resolve_changed_contacts(const std::vector<int>& members) {
+    if constexpr (BodyPlaneContactPolicy<Contact>) {
+      if (opt_.contact_iterations <= 0 || static_) return;
+      const size_t n = members.size();
+      std::vector<std::vector<char>> status(n);
+      for (size_t i = 0; i < n; ++i) status[i] = contact_.last_status(model_, members[i]);
+      std::vector<typename Contact::BodyPlaneContacts> used(n), now(n);
+      bool iterated = false;
+      for (int it = 0; it < opt_.contact_iterations; ++it) {
+        const ContactView view{model_, x_, v_, t_state_, opt_.dt};
+        bool changed = false;
+        for (size_t i = 0; i < n; ++i) {
+          now[i] = contact_.body_plane_contacts(view, members[i]);
+          changed = changed || now[i].status != status[i];
+        }
+        if (!changed) break;
+        for (size_t i = 0; i < n; ++i) {
+          const int b = members[i];
+          if (!iterated) remove_predictor_plane_forces(b);
+          for (size_t k = 0; k < used[i].forces.size(); ++k) fc1_.segment<3>(6 * used[i].tangents[k].node) -= used[i].forces[k];
+          for (size_t k = 0; k < now[i].forces.size(); ++k) fc1_.segment<3>(6 * now[i].tangents[k].node) += now[i].forces[k];
+          contact_iterated_[b] = 1;
+          status[i] = std::move(now[i].status);
+          used[i] = std::move(now[i]);
+          set_body_contact_terms(systems_[b], used[i].tangents);
+        }
+        iterated = true;
+        if (n > 1) carry_group_pairs_to_current_state(members);
+        double num = 0, den = 0;
+        for (int b : members) residual_body(systems_[b], fext1_, num, den);
+        if (n > 1) RigidBody::group_newton_step(*this, members);
+        else RigidBody::newton_step(*this, systems_[members.front()]);
+        for (int b : members) kinematics_body(b);
+      }
+      if (!iterated) return;
+      for (const auto& u : used)
+        for (const auto& t : u.tangents)  // the last evaluation's forces at the end state
+          fc1_.segment<3>(6 * t.node) -= t.K * (x_[t.node] - t.x) + t.C * (v_.segment<3>(6 * t.node) - t.v);
+    }
+  }
+  // A group's pair forces in fc1_ moved from the state of their last shift to the current one (their
+  // linearisation); contact_at_end_of_step then adds the rest of the way to the end state.
+  void carry_group_pairs_to_current_state(const std::vector<int>& members) {
+    if constexpr (PairTangentPolicy<Contact>) {
+      const auto& pairs = contact_.pair_tangents();
+      for (int k : group_pairs_[group_of(members.front())]) {
+        const Vec3 shift = pair_shift(pairs[k]);
+        share_pair_force(pairs[k], shift - pair_predictor_shift_[k], [&](int node, const Vec6& w) { fc1_.segment<6>(6 * node) += w; });
+        pair_predictor_shift_[k] = shift;
+      }
+    }
+  }
+  // Takes out of fc1_ the plane forces the predictor put on a body's nodes and their shift to the
+  // predictor's state (linearised_contact_at_current_state).
+  void remove_predictor_plane_forces(int b) {
+    if constexpr (BodyPlaneContactPolicy<Contact>) {
+      for (const auto& [n, f] : contact_.plane_forces())
+        if (model_.node(n).body == b) fc1_.segment<3>(6 * n) -= f;
+      const auto& tangents = contact_.nodal_tangents();
+      for (size_t k = 0; k < tangents.size(); ++k)
+        if (model_.node(tangents[k].node).body == b) fc1_.segment<3>(6 * tangents[k].node) -= predictor_shift_[k];
+    }
+  }
+  // A body's effective-matrix contact terms (1 - af) (K + gamma / (beta dt) C), per node, from tangents.
+  void set_body_contact_terms(detail::BodySystem& bs, const std::vector<NodalContactTangent>& tangents) {
+    const double kf = 1 - coef_.alpha_f, cf = coef_.gamma / (coef_.beta * opt_.dt);
+    bs.contact.clear();
+    for (const auto& t : tangents) {
+      const int local = local_index_[t.node];
+      const Mat3 k = kf * (t.K + cf * t.C);
+      const auto same = std::find_if(bs.contact.begin(), bs.contact.end(), [&](const auto& c) { return c.local == local; });
+      if (same != bs.contact.end()) same->K += k;
+      else bs.contact.push_back({local, k});
+    }
   }
 
   int check_node(int n) const {
@@ -573,6 +677,7 @@ class Simulation {
     local_index_.assign(nn, -1);
     systems_.resize(model_.num_bodies());
     sums_.assign(model_.num_bodies(), {});
+    contact_iterated_.assign(model_.num_bodies(), 0);
     solvers_.resize(model_.num_bodies());
     for (int b = 0; b < model_.num_bodies(); ++b) {
       auto& bs = systems_[b];
@@ -762,6 +867,7 @@ class Simulation {
       timed(s.solve, [&] { residual_body(systems_[m], fext1_, s.residual_num, s.residual_den); });
     }
     update_group(members);
+    timed(sums_[members.front()].solve, [&] { resolve_changed_contacts(members); });
     if (opt_.check_finite) {
       for (int m : members) {
         BodyStepSums& s = sums_[m];
@@ -818,6 +924,7 @@ class Simulation {
       const auto& tangents = contact_.nodal_tangents();
       for (size_t k = 0; k < tangents.size(); ++k) {
         const auto& t = tangents[k];
+        if (contact_iterated_[model_.node(t.node).body]) continue;  // its fc1_ holds its end forces already
         const int i = 6 * t.node;
         const Vec3 shift = -(t.K * (x_[t.node] - t.x) + t.C * (v_.segment<3>(i) - t.v));
         const Vec3 delta = shift - predictor_shift_[k];
@@ -1012,6 +1119,7 @@ class Simulation {
     }
     kinematics_body(b, false);  // positions stay: Du = 0
     if (bs.rigid) RigidBody::start_step(*this, bs);
+    contact_iterated_[b] = 0;
     external_forces_body(b, loads, fext1_);
   }
 
@@ -1579,6 +1687,7 @@ class Simulation {
   std::vector<Vec3> predictor_shift_;  // the linearised contact forces' shift from v_contact_ to v_ at the predictor
   std::vector<Vec3> pair_predictor_shift_;    // the same for the pairs of rigid groups
   std::vector<char> pair_active_;             // per pair tangent: inside a rigid group's solve
+  std::vector<char> contact_iterated_;        // per body: this step's plane forces resolved at its end (fc1_)
   std::vector<std::vector<int>> groups_;      // rigid groups: their bodies, ascending
   std::vector<std::vector<int>> group_pairs_; // each group's pair tangents
   std::vector<int> group_of_;                 // per body: its group, or -1 (empty: no groups)
