@@ -128,11 +128,11 @@ TEST_CASE("every law holds a block still for 10 s under gravity", "[contact_dyna
         INFO(law << (rigid ? " rigid " : " FE ") << label);
         CHECK(drift < 1e-4);
         // stiff's dashpots, twice critical for tall items' rocking (stiff_contact.hpp), keep a
-        // micrometre chatter of 0.9 to 2.4 mm/s on three of the four boxes, without drift: the clamp at
-        // zero force frees a node in each step its dashpot's pull exceeds the spring's push (above
-        // 1.2 mm/s). Unclamped it is quiet (1e-13 m/s) but glues a lifting corner (a rocking block
-        // never lifts off: measured). Open: the clamp's status iterated within the step.
-        CHECK(late < (std::string_view(law) == "stiff" ? 3e-3 : 1e-3));
+        // micrometre chatter of 1.4 and 2.4 mm/s on the FE boxes, without drift: the clamp at zero
+        // force frees a node in each step its dashpot's pull exceeds the spring's push. A rigid body
+        // resolves the clamp's status within the step (SimulationOptions::contact_iterations): 7e-14
+        // m/s (0.9 mm/s on the small rigid box before). Open for flexible bodies.
+        CHECK(late < (std::string_view(law) == "stiff" && !rigid ? 3e-3 : 1e-3));
       });
 }
 

@@ -209,6 +209,23 @@ class RoomContact {
     }
     return out;
   }
+  // Whether any of the body's (node, plane) statuses at the view's state differs from the last
+  // add_forces' (no allocation: called for every rigid body at every step).
+  bool body_plane_status_changed(const ContactView& view, int body) const {
+    if (!implicit || !bodies_[body].implicit || plane_status_.empty()) return false;
+    const auto& sg = support_[body];
+    for (size_t p = 0; p < planes_.size(); ++p) {
+      const detail::SupportFace* face = sg.faces.empty() ? nullptr : sg.face_towards(view.x, planes_[p].normal);
+      for (int n : view.model.body(body).nodes) {
+        if (!plane_node_[n]) continue;
+        const bool on_face = face && std::find(face->vertices.begin(), face->vertices.end(), n) != face->vertices.end();
+        ContactState st = node_state_[n * planes_.size() + p];
+        if (status_of(node_plane_force(view, n, p, on_face ? face->share : 1.0, st)) != plane_status_[n * planes_.size() + p])
+          return true;
+      }
+    }
+    return false;
+  }
   std::vector<char> last_status(const Model& model, int body) const {
     std::vector<char> status;
     if (!implicit || !bodies_[body].implicit || plane_status_.empty()) return status;
