@@ -1,6 +1,6 @@
 // The scene contact laws, walked from their one list (scene/laws/law_list.hpp): every law's name through
 // the reader and the writer, every key it declares accepted and felt in its force, every key it does not
-// declare a named error, and the key table of docs/scene/scene_file.md the generated one.
+// declare a named error, and docs/scene/scene_file.md's key table the generated one, its law row complete.
 #include <catch2/catch.hpp>
 
 #include <furniture_fem/scene/scene.hpp>
@@ -53,6 +53,22 @@ std::vector<Vec3> floor_forces(const ContactParams& p) {
   }
   return out;
 }
+
+// The record of docs/contact/contact.md, "Adding a contact law", is one; a key outside contact_parameters is not.
+struct CubicPenalty {
+  double force(const ContactKinematics&, const ContactParams& p, double g, double) const { return p.alpha * g * g * g; }
+};
+struct CubicSceneLaw : SceneLawDefaults {
+  static constexpr std::string_view name = "cubic";
+  using law = ContactLaw<CubicPenalty, PaperSignDamping, PaperSignFriction>;
+  static constexpr bool cg_allowed = false;
+  static constexpr std::array<std::string_view, 3> parameters{"alpha_kgf", "mu", "mu_long"};
+};
+struct MisspeltSceneLaw : CubicSceneLaw {
+  static constexpr std::array<std::string_view, 1> parameters{"alpha"};
+};
+static_assert(SceneContactLaw<CubicSceneLaw>);
+static_assert(!SceneContactLaw<MisspeltSceneLaw>);
 
 template <class F>
 void for_each_law(F&& f) {
@@ -134,4 +150,10 @@ TEST_CASE("the contact key table of docs/scene/scene_file.md is the generated on
   REQUIRE(in_docs);
   INFO("regenerate the block in docs/scene/scene_file.md from contact_law_table()");
   CHECK(*in_docs == "\n" + contact_law_table() + "\n");
+  // The `law` row of the contact table names every law.
+  const std::string page = ffem_test::docs_page("scene/scene_file.md");
+  const auto row = page.find("| `law` | string |");
+  REQUIRE(row != std::string::npos);
+  const std::string law_row = page.substr(row, page.find('\n', row) - row);
+  for (const auto& law : scene_law_infos) CHECK_THAT(law_row, Contains("`" + std::string(law.name) + "`"));
 }

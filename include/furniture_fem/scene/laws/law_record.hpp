@@ -93,7 +93,7 @@ struct LawList {
 };
 
 namespace detail {
-// Whether every key a record declares is an override key (checked at compile time by law_list.hpp).
+// Whether every key a record declares is an override key (a misspelt key fails SceneContactLaw).
 template <class R>
 consteval bool declares_known_keys() {
   for (std::string_view key : R::parameters) {
