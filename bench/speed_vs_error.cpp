@@ -84,7 +84,7 @@ SceneSpec base_scene(double duration, double pga) {
   s.name = "speed vs error: tall cabinet and desk";
   s.source = s.name;
   s.walls = {};
-  s.contact.law = ContactLawKind::paper_anisotropic;
+  s.contact.law = law_kind<PaperAnisotropicSceneLaw>;
   s.duration = duration;
   // The tall cabinet (front towards -X) 0.2 m behind the desk's back edge, as in configuration 3's
   // centre group but closer.

@@ -4,9 +4,8 @@
 
 #include <furniture_fem/scene/scene.hpp>
 
-#include <filesystem>
-#include <fstream>
-#include <sstream>
+#include "../support/test_files.hpp"
+
 #include <string>
 
 using namespace furniture_fem;
@@ -48,13 +47,6 @@ std::string parse_error(const json& j) {
     return e.what();
   }
   return "(no error)";
-}
-
-std::string read_text(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 }  // namespace
@@ -132,19 +124,10 @@ TEST_CASE("a kind's declared default is what is built when the key is absent", "
 }
 
 TEST_CASE("the item parameter tables of docs/scene/scene_file.md are the generated ones", "[scene][kinds][docs]") {
-  // __FILE__ may be relative to the build folder of the tests, which is where the executable sits.
-  std::filesystem::path here(__FILE__);
-  if (here.is_relative()) here = std::filesystem::read_symlink("/proc/self/exe").parent_path() / here;
-  const auto page = here.parent_path() / "../../docs/scene/scene_file.md";
-  const std::string text = read_text(page);
-  const std::string begin = "<!-- begin: item_parameter_tables() -->\n", end = "<!-- end: item_parameter_tables() -->";
-  const auto a = text.find(begin), b = text.find(end);
-  INFO("docs page: " << page.string());
-  REQUIRE(a != std::string::npos);
-  REQUIRE(b != std::string::npos);
-  const std::string in_docs = text.substr(a + begin.size(), b - a - begin.size());
+  const auto in_docs = ffem_test::docs_block("scene/scene_file.md", "item_parameter_tables()");
+  REQUIRE(in_docs);
   INFO("regenerate the block in docs/scene/scene_file.md from item_parameter_tables()");
-  CHECK(in_docs == "\n" + item_parameter_tables() + "\n");
+  CHECK(*in_docs == "\n" + item_parameter_tables() + "\n");
   // Registered kinds of users do not enter the docs table.
   register_test_fridge();
   CHECK(item_parameter_tables().find("test_fridge") == std::string::npos);

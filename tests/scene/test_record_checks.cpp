@@ -384,7 +384,7 @@ TEST_CASE("substitutions that were silent are errors", "[scene][records]") {
     j["contact"] = {{"law", "paper"}};
     CHECK(read_error(j) == "no error");
     SceneSpec s = parse_scene_json(j, "scene.json");
-    s.contact.law = ContactLawKind::stiff;
+    s.contact.law = law_kind<StiffSceneLaw>;
     CHECK_THROWS_WITH(validate(s), Contains("solver: \"cg\" is available"));
   }
   SECTION("a low-pass corner at or above the record's Nyquist frequency") {

@@ -4,6 +4,8 @@
 
 #include <furniture_fem/scene/scene.hpp>
 
+#include "../support/input_errors.hpp"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -64,17 +66,7 @@ json small_scene() {
   })");
 }
 
-// Runs `f` and returns the InputError's message (fails the test when nothing is thrown).
-template <class F>
-std::string input_error(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  FAIL("no InputError thrown");
-  return {};
-}
+using ffem_test::input_error;  // "no error" when nothing is thrown: the message checks then fail
 
 // Broken scenes go through a file, as a user's would.
 std::string write_broken(const json& j) {

@@ -201,7 +201,7 @@ inline SceneSpec open_floor(const std::string& name, double dt, double duration)
   s.name = name;
   s.source = name;
   s.walls = {};
-  s.contact.law = ContactLawKind::paper_anisotropic;
+  s.contact.law = law_kind<PaperAnisotropicSceneLaw>;
   s.dt = dt;
   s.duration = duration;
   s.outputs = OutputSpec{};

@@ -56,6 +56,13 @@ inline constexpr std::array<CommonItemParameter, 15> common_item_parameters{{
      &ItemParams::alpha_scale, false, "1"},
 }};
 
+// Whether `params` sets the common parameter `key` (false for a key that is not one).
+inline bool common_parameter_given(const ItemParams& params, std::string_view key) {
+  for (const auto& c : common_item_parameters)
+    if (c.parameter.key == key) return (params.*(c.field)).has_value();
+  return false;
+}
+
 // The keys items of `kind` accept in their params, common ones first.
 inline std::vector<std::string_view> accepted_item_parameters(const ItemKindEntry& kind) {
   std::vector<std::string_view> keys;

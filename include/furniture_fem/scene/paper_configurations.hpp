@@ -5,6 +5,7 @@
 
 #include "../core/errors.hpp"
 #include "../furniture/furniture.hpp"
+#include "laws/law_list.hpp"
 #include "spec.hpp"
 
 namespace furniture_fem {
@@ -51,7 +52,7 @@ inline SceneSpec configuration(int k, const std::string& records_dir = "../share
   g.window_end = 16.0;
   s.duration = 12.0;
   s.dt = 1e-3;
-  s.contact.law = ContactLawKind::paper_anisotropic;
+  s.contact.law = law_kind<PaperAnisotropicSceneLaw>;
   s.integrator = {IntegratorKind::paper_newmark, 0.5, false};
   s.solver = SolverKind::direct;
   s.outputs.folder = "out/configuration_" + std::to_string(k);

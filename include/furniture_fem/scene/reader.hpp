@@ -54,18 +54,20 @@ inline ItemParams parse_item_params(const ObjectReader& r, const ItemKindEntry& 
   return p;
 }
 
+// The override keys of one pair kind: every key may stand there (floor-only keys on the floor), and a
+// key the law does not declare is an error naming the law.
 inline ContactOverrides parse_contact_overrides(const ObjectReader& r, ContactLawKind law, bool is_floor) {
   ContactOverrides o;
   std::vector<std::string_view> allowed;
-  for (const auto& f : contact_fields)
-    if (is_floor || !f.floor_only) allowed.push_back(f.key);
+  for (const auto& p : contact_parameters)
+    if (is_floor || !p.floor_only) allowed.push_back(p.key);
   r.allow_only(allowed, "contact parameter");
-  for (const auto& f : contact_fields) {
-    if (!r.has(f.key)) continue;
-    if (!f.used_by[static_cast<size_t>(law)])
-      r.fail(r.path(f.key), "not used by the contact law \"" + enum_name(law_names, law) + "\"");
-    o.*(f.field) = r.optional_number(f.key);
-    read_range(r, f.key, f.lo, f.hi, f.lo_exclusive);
+  for (const auto& p : contact_parameters) {
+    if (!r.has(p.key)) continue;
+    if (!scene_law(law).reads(p.key))
+      r.fail(r.path(p.key), "not used by the contact law \"" + enum_name(law_names, law) + "\"");
+    o.*(p.field) = r.optional_number(p.key);
+    read_range(r, p.key, p.lo, p.hi, p.lo_exclusive);
   }
   return o;
 }
@@ -301,14 +303,14 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
     const ObjectReader c = r.object("contact");
     c.allow_only({"law", "implicit", "velocity_regularisation", "stick_length", "floor", "wall", "item"});
     s.contact.law = c.enumeration("law", detail::law_names, s.contact.law, "contact law");
-    // `stiff` is built for contact inside the implicit step: its default is every item's floor and wall
-    // contact there (explicit, its spring is past the stable step of a frame's nodes at dt 1 ms).
-    if (s.contact.law == ContactLawKind::stiff) s.contact.implicit = ImplicitContact::all;
+    const SceneLawInfo& law = scene_law(s.contact.law);
+    if (law.default_implicit) s.contact.implicit = *law.default_implicit;
     s.contact.implicit = c.enumeration("implicit", detail::implicit_contact_names, s.contact.implicit, "implicit contact");
     s.contact.velocity_regularisation = c.number("velocity_regularisation", s.contact.velocity_regularisation);
     c.positive("velocity_regularisation");
-    if (c.has("stick_length") && s.contact.law == ContactLawKind::stick_slip)
-      c.fail(c.path("stick_length"), "not used by the contact law \"stick_slip\" (its tangential spring is k_t)");
+    if (c.has("stick_length") && !law.own_stick_spring.empty())
+      c.fail(c.path("stick_length"),
+             "not used by the contact law \"" + std::string(law.name) + "\" (" + std::string(law.own_stick_spring) + ")");
     s.contact.stick_length = c.number("stick_length", s.contact.stick_length);
     detail::read_range(c, "stick_length", 0.0, 0.01, false);
     if (c.has("floor")) s.contact.floor = detail::parse_contact_overrides(c.object("floor"), s.contact.law, true);

@@ -407,23 +407,17 @@ inline RunSummary run_scene(const SceneSpec& spec, const RunOptions& opt = {}, c
   check_motion_covers_run(spec, opt, scene_table_motion(spec));
   // A results folder that must not be written into fails before the model is built, too.
   if (const std::string out = results_folder_of(spec, opt); !out.empty()) check_results_folder(out, opt.overwrite);
-  const bool direct = spec.solver == SolverKind::direct;  // cg with another law than the paper's: validate()
-  switch (spec.contact.law) {
-    case ContactLawKind::paper:
-      return direct ? detail::run_composed<PaperLaw, DirectLdltSolver>(spec, opt, extra, t_start)
-                    : detail::run_composed<PaperLaw, ConjugateGradientSolver>(spec, opt, extra, t_start);
-    case ContactLawKind::paper_anisotropic:
-      return direct ? detail::run_composed<PaperAnisotropicFloorLaw, DirectLdltSolver>(spec, opt, extra, t_start)
-                    : detail::run_composed<PaperAnisotropicFloorLaw, ConjugateGradientSolver>(spec, opt, extra, t_start);
-    case ContactLawKind::spring_dashpot:
-      return detail::run_composed<SpringDashpotLaw, DirectLdltSolver>(spec, opt, extra, t_start);
-    case ContactLawKind::hunt_crossley:
-      return detail::run_composed<HuntCrossleyLaw, DirectLdltSolver>(spec, opt, extra, t_start);
-    case ContactLawKind::stick_slip:
-      return detail::run_composed<StickSlipLaw, DirectLdltSolver>(spec, opt, extra, t_start);
-    case ContactLawKind::stiff:  // the spring-dashpot law with its parameters from the item (scene_body_contacts)
-      return detail::run_composed<SpringDashpotLaw, DirectLdltSolver>(spec, opt, extra, t_start);
-  }
+  // The law's record picks the ContactLaw; CG only where the record allows it (validate() refuses the rest).
+  const bool direct = spec.solver == SolverKind::direct;
+  RunSummary sum;
+  const auto run = [&]<class R>() {
+    if constexpr (R::cg_allowed)
+      sum = direct ? detail::run_composed<typename R::law, DirectLdltSolver>(spec, opt, extra, t_start)
+                   : detail::run_composed<typename R::law, ConjugateGradientSolver>(spec, opt, extra, t_start);
+    else
+      sum = detail::run_composed<typename R::law, DirectLdltSolver>(spec, opt, extra, t_start);
+  };
+  if (visit_scene_law(spec.contact.law, run)) return sum;
   throw InputError(spec.source, 0, "contact.law", "unknown contact law");
 }
 

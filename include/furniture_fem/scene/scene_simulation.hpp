@@ -22,7 +22,7 @@
 
 #include "../excitation/excitation.hpp"
 #include "../contact/room_contact.hpp"
-#include "../contact/stiff_contact.hpp"
+#include "laws/law_list.hpp"
 #include "scene.hpp"
 #include "../core/simulation.hpp"
 
@@ -255,22 +255,16 @@ inline bool item_is_rigid(const SceneSpec& s, const ItemInfo& item) {
   return true;
 }
 
-// Contact parameters of each body from its item's (Table 4 or rule) values and the scene's overrides.
+// Contact parameters of each body from its item's (Table 4 or rule) values, its law's set-up (the law's
+// record, scene/laws/) and the scene's overrides.
 inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Model& model,
                                                     const std::vector<ItemInfo>& items) {
   std::vector<BodyContact> out(model.num_bodies());
+  const SceneLawInfo& law = scene_law(s.contact.law);
+  const LawSetup setup{s, model, items};
   const auto apply = [&](ContactParams& p, const ContactOverrides& o) {
-    if (o.alpha_kgf) p.alpha = *o.alpha_kgf * newtons_per_kgf;
-    if (o.dc_kgf) p.Dc = *o.dc_kgf * newtons_per_kgf;
-    if (o.q) p.q = *o.q;
-    if (o.mu) p.mu = p.mu_long = p.mu_short = *o.mu;
-    if (o.mu_long) p.mu = p.mu_long = *o.mu_long;
-    if (o.mu_short) p.mu_short = *o.mu_short;
-    if (o.stiffness) {  // the linear spring, the stick-slip spring, Hunt-Crossley's at the same onset
-      p.k_lin = p.k_t = *o.stiffness;
-      p.k_hc = *o.stiffness / std::sqrt(0.025);
-    }
-    if (o.damping) p.c_lin = p.c_t = *o.damping;
+    for (const auto& key : contact_parameters)
+      if (o.*(key.field)) key.apply(p, *(o.*(key.field)));
   };
   // Floor and wall contact inside the implicit step where the scene asks for it; friction sticks only
   // there (a stick spring applied explicitly would be unstable). Two rigid implicit items also have
@@ -279,12 +273,6 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
     return s.contact.implicit == ImplicitContact::all ||
            (s.contact.implicit == ImplicitContact::rigid && item_is_rigid(s, it));
   };
-  // The `stiff` law between items: one cap for the scene (the pair takes the mean of two items' values),
-  // from its lightest node (cap_for_explicit_pairs). Kept for rigid groups too: uncapped, the stiff
-  // dashpot's clamp makes a rigid stack chatter (docs/contact/implicit_contact.md, "Rigid groups").
-  double lightest = std::numeric_limits<double>::infinity();
-  if (s.contact.law == ContactLawKind::stiff)
-    for (const auto& it : items) lightest = std::min(lightest, lightest_node_mass(model, it.body));
   for (const auto& it : items) {
     BodyContact bc;
     const ItemContact& c = it.contact;
@@ -294,7 +282,7 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
     base.q = c.q;
     base.v_reg = s.contact.velocity_regularisation;
     bc.implicit = implicit_for(it);
-    base.stick_length = s.contact.law == ContactLawKind::stick_slip || !bc.implicit ? 0.0 : s.contact.stick_length;
+    base.stick_length = !law.own_stick_spring.empty() || !bc.implicit ? 0.0 : s.contact.stick_length;
     // Linear and Hunt-Crossley springs get the paper penalty's stiffness at onset: alpha / L per
     // contact with L = 25 mm (half the 50 mm member width); the tangential spring of the stick-slip
     // law is as stiff; critical-ish damping for a node of ~0.1 kg.
@@ -303,7 +291,7 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
     base.k_hc = base.k_lin / std::sqrt(0.025);
     base.hc_damping = 0.5;
     base.k_t = base.k_lin;
-    if (s.contact.law == ContactLawKind::stiff) set_stiff_contact(model, it.body, base);
+    law.item_base(base, setup, it);
     bc.floor = base;
     bc.floor.mu = c.mu_floor_long;
     bc.floor.mu_long = c.mu_floor_long;
@@ -312,7 +300,7 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
     bc.wall.mu = bc.wall.mu_long = bc.wall.mu_short = c.mu_wall;
     bc.item = base;
     bc.item.mu = bc.item.mu_long = bc.item.mu_short = c.mu_item;
-    if (s.contact.law == ContactLawKind::stiff) cap_for_explicit_pairs(bc.item, lightest, s.dt);
+    law.item_pair(bc.item, setup);
     apply(bc.floor, s.contact.floor);
     apply(bc.wall, s.contact.wall);
     apply(bc.item, s.contact.item);

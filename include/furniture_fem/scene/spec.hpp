@@ -4,6 +4,7 @@
 // integration, and what to write out. Read from JSON by scene/reader.hpp (docs/scene/scene_file.md).
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -124,7 +125,12 @@ struct GroundMotionSpec {
   bool pad_after_end = false;
 };
 
-enum class ContactLawKind { paper, paper_anisotropic, spring_dashpot, hunt_crossley, stick_slip, stiff };
+// A scene contact law: its place in scene_contact_laws (scene/laws/law_list.hpp), written
+// law_kind<StiffSceneLaw>; the list's first law ("paper") is the default.
+struct ContactLawKind {
+  std::size_t index = 0;
+  friend constexpr bool operator==(ContactLawKind, ContactLawKind) = default;
+};
 
 // Overrides of the contact parameters for one kind of pair (floor, wall or item-item). Unset values
 // come from each item's ItemContact (Table 4 or the 0.8 rule).
@@ -139,7 +145,7 @@ struct ContactOverrides {
 enum class ImplicitContact { none, rigid, all };
 
 struct ContactSpec {
-  ContactLawKind law = ContactLawKind::paper;
+  ContactLawKind law;  // the list's first law, "paper", unless set
   ImplicitContact implicit = ImplicitContact::rigid;
   double velocity_regularisation = 1e-3;  // m/s: v/|v| is smoothed below this speed
   // m: elastic range of the stick spring of Coulomb friction (holds still below mu N); 0: friction

@@ -135,6 +135,9 @@ inline void validate(const SceneSpec& s) {
                    detail::fmt(s.dt) + " s, duration = " + detail::fmt(s.duration) + " s)");
   if (s.ground_motion.level < 0) fail("ground_motion.level", "must not be negative (got " + detail::fmt(s.ground_motion.level) + ")");
   if (s.items.empty()) fail("items", "a scene needs at least one item");
+  if (s.contact.law.index >= scene_law_infos.size())
+    fail("contact.law", "unknown contact law; expected one of: " + json_io::enum_choices(detail::law_names));
+  const SceneLawInfo& law = scene_law(s.contact.law);
 
   std::set<std::string> names;
   std::vector<detail::Footprint> footprints;
@@ -155,15 +158,10 @@ inline void validate(const SceneSpec& s) {
       if (const auto why = declared->violation(value))
         fail(path + ".params." + key, *why + " (got " + detail::fmt(value) + ")");
     }
-    // `stiff` sets each item's stiffness and damping from its mass and inertia: a penalty given for
-    // the item would be read and ignored.
-    if (s.contact.law == ContactLawKind::stiff)
-      for (auto [key, given] : {std::pair{"alpha_kgf", item.params.alpha_kgf.has_value()},
-                                std::pair{"dc_kgf", item.params.dc_kgf.has_value()},
-                                std::pair{"alpha_scale", item.params.alpha_scale.has_value()}})
-        if (given)
-          fail(path + ".params." + key, "not used by contact law \"stiff\" (it sets each item's stiffness and damping "
-                                        "from its mass and inertia; docs/contact/contact.md)");
+    for (const auto key : law.unused_item_parameters)  // a value the law sets itself would be read and ignored
+      if (common_parameter_given(item.params, key))
+        fail(path + ".params." + std::string(key), "not used by contact law \"" + std::string(law.name) + "\" (" +
+                                                       std::string(law.unused_item_parameters_why) + ")");
     const Vec3 size = item_size(item);
     if (item.params.cog_h && *item.params.cog_h >= size.z())
       fail(path + ".params.cog_h", "must lie below the item's height " + detail::fmt(size.z()) + " m (got " +

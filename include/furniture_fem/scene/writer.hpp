@@ -100,7 +100,7 @@ inline nlohmann::json to_json(const SceneSpec& s) {
   json contact = {{"law", enum_name(detail::law_names, s.contact.law)},
                   {"implicit", enum_name(detail::implicit_contact_names, s.contact.implicit)},
                   {"velocity_regularisation", s.contact.velocity_regularisation}};
-  if (s.contact.law != ContactLawKind::stick_slip) contact["stick_length"] = s.contact.stick_length;
+  if (scene_law(s.contact.law).own_stick_spring.empty()) contact["stick_length"] = s.contact.stick_length;
   for (auto [key, o] : {std::pair{"floor", &s.contact.floor}, std::pair{"wall", &s.contact.wall},
                         std::pair{"item", &s.contact.item}}) {
     const json ov = detail::overrides_to_json(*o);

@@ -1,5 +1,5 @@
 #pragma once
-// Internal: the names scene files use for enumerations, and the contact overrides each law reads; shared
+// Internal: the names scene files use for enumerations (the contact laws' from scene/laws/law_list.hpp); shared
 // by the reader and the writer. Users include furniture_fem/scene/scene.hpp, not this file.
 #ifndef FURNITURE_FEM_SCENE_INTERNAL
 #error "furniture_fem/scene/detail/scene_names.hpp is internal: include <furniture_fem/scene/scene.hpp>"
@@ -12,6 +12,7 @@
 #include <vector>
 #include <string_view>
 
+#include "../laws/law_list.hpp"
 #include "../spec.hpp"
 #include "scene_json.hpp"
 
@@ -29,12 +30,11 @@ inline constexpr EnumNames<MotionDimensions, 2> dimension_names{
     {{MotionDimensions::one_d, "1d"}, {MotionDimensions::three_d, "3d"}}};
 inline constexpr EnumNames<AccelerationUnits, 3> unit_names{
     {{AccelerationUnits::g, "g"}, {AccelerationUnits::gal, "gal"}, {AccelerationUnits::m_per_s2, "m/s2"}}};
-inline constexpr EnumNames<ContactLawKind, 6> law_names{{{ContactLawKind::paper, "paper"},
-                                                         {ContactLawKind::paper_anisotropic, "paper_anisotropic"},
-                                                         {ContactLawKind::spring_dashpot, "spring_dashpot"},
-                                                         {ContactLawKind::hunt_crossley, "hunt_crossley"},
-                                                         {ContactLawKind::stick_slip, "stick_slip"},
-                                                         {ContactLawKind::stiff, "stiff"}}};
+template <class... R>
+constexpr EnumNames<ContactLawKind, sizeof...(R)> names_of(LawList<R...>) {
+  return {{{law_kind<R>, R::name}...}};
+}
+inline constexpr auto law_names = names_of(scene_contact_laws{});
 inline constexpr EnumNames<ImplicitContact, 3> implicit_contact_names{
     {{ImplicitContact::none, "none"}, {ImplicitContact::rigid, "rigid"}, {ImplicitContact::all, "all"}}};
 inline constexpr EnumNames<IntegratorKind, 3> integrator_names{
@@ -44,34 +44,13 @@ inline constexpr EnumNames<IntegratorKind, 3> integrator_names{
 inline constexpr EnumNames<ScaleMeasure, 2> scale_measure_names{{{ScaleMeasure::pga, "pga"}, {ScaleMeasure::pgv, "pgv"}}};
 inline constexpr EnumNames<SolverKind, 2> solver_names{{{SolverKind::cg, "cg"}, {SolverKind::direct, "direct"}}};
 
-// Which contact override a law reads: a value the chosen law ignores is a mistake worth reporting.
-struct ContactField {
-  std::string_view key;
-  std::optional<double> ContactOverrides::*field;
-  double lo, hi;
-  bool lo_exclusive;
-  std::array<bool, 6> used_by;  // paper, paper_anisotropic, spring_dashpot, hunt_crossley, stick_slip, stiff
-  bool floor_only;
-};
-// mu_long is read by every law (the isotropic ones take it as their floor mu, the paper's rule);
-// mu_short only by the anisotropic one.
-inline constexpr std::array<ContactField, 8> contact_fields{{
-    {"alpha_kgf", &ContactOverrides::alpha_kgf, 0.0, 1e6, true, {true, true, false, false, true, false}, false},
-    {"dc_kgf", &ContactOverrides::dc_kgf, 0.0, 1e6, false, {true, true, false, false, true, false}, false},
-    {"q", &ContactOverrides::q, 0.0, 10.0, true, {true, true, false, false, true, false}, false},
-    {"mu", &ContactOverrides::mu, 0.0, 5.0, false, {true, true, true, true, true, true}, false},
-    {"mu_long", &ContactOverrides::mu_long, 0.0, 5.0, false, {true, true, true, true, true, true}, true},
-    {"mu_short", &ContactOverrides::mu_short, 0.0, 5.0, false, {false, true, false, false, false, false}, true},
-    {"stiffness", &ContactOverrides::stiffness, 0.0, 1e12, true, {false, false, true, true, true, false}, false},
-    {"damping", &ContactOverrides::damping, 0.0, 1e12, false, {false, false, true, false, true, false}, false},
-}};
-
-// Why the linear solver cannot run with the contact law, or "": the runner builds the CG solver for the
-// paper's laws only (each law-solver pair is a separate instantiation of the stepping). `solver: "cg"`
-// with another law was replaced by "direct" silently (issue 12).
+// Why the linear solver cannot run with the contact law, or "": the runner builds the CG solver only for
+// the laws whose record allows it (each law-solver pair is a separate instantiation of the stepping).
+// `solver: "cg"` with another law was replaced by "direct" silently (issue 12).
 inline std::string solver_problem(SolverKind solver, ContactLawKind law) {
-  if (solver != SolverKind::cg || law == ContactLawKind::paper || law == ContactLawKind::paper_anisotropic) return {};
-  return "\"cg\" is available with the contact laws \"paper\" and \"paper_anisotropic\" only; the law \"" +
+  if (solver != SolverKind::cg || scene_law(law).cg_allowed) return {};
+  return "\"cg\" is available with the contact laws " +
+         law_name_list([](const SceneLawInfo& l) { return l.cg_allowed; }) + " only; the law \"" +
          enum_name(law_names, law) + "\" runs with \"direct\" (set \"solver\": \"direct\")";
 }
 
@@ -108,8 +87,8 @@ inline json points_to_json(const std::vector<std::pair<double, double>>& pts) {
 
 inline json overrides_to_json(const ContactOverrides& o) {
   json j = json::object();
-  for (const auto& f : contact_fields)
-    if (o.*(f.field)) j[std::string(f.key)] = *(o.*(f.field));
+  for (const auto& p : contact_parameters)
+    if (o.*(p.field)) j[std::string(p.key)] = *(o.*(p.field));
   return j;
 }
 

@@ -1,0 +1,159 @@
+// The scene contact laws, walked from their one list (scene/laws/law_list.hpp): every law's name through
+// the reader and the writer, every key it declares accepted and felt in its force, every key it does not
+// declare a named error, and docs/scene/scene_file.md's key table the generated one, its law row complete.
+#include <catch2/catch.hpp>
+
+#include <furniture_fem/scene/scene.hpp>
+#include <furniture_fem/scene/scene_simulation.hpp>
+
+#include "../support/input_errors.hpp"
+#include "../support/test_files.hpp"
+
+#include <map>
+#include <string>
+
+using namespace furniture_fem;
+using nlohmann::json;
+using Catch::Matchers::Contains;
+using ffem_test::input_error;
+
+namespace {
+
+// One side table; `contact` as given.
+json law_scene(const json& contact) {
+  return {{"items", json::array({{{"kind", "side_table"}}})}, {"contact", contact}, {"solver", "direct"}};
+}
+
+// A value in each key's range, away from the defaults (small enough for stick_slip to stick at the slow speed).
+const std::map<std::string_view, double> key_values{{"alpha_kgf", 123.0}, {"dc_kgf", 77.0},      {"q", 1.5},
+                                                    {"mu", 0.123},        {"mu_long", 0.234},    {"mu_short", 0.05},
+                                                    {"stiffness", 3.3e3}, {"damping", 4.5}};
+
+// The floor parameters the scene gives its item.
+ContactParams floor_params(const SceneSpec& s) {
+  Model model;
+  const auto items = build_scene(s, model);
+  return scene_body_contacts(s, model, items).at(items.at(0).body).floor;
+}
+
+// The law's force on a node 5 mm into the floor, approaching, sliding slowly (sticking) or fast (slipping)
+// at an angle to the item's long axis.
+template <class Law>
+std::vector<Vec3> floor_forces(const ContactParams& p) {
+  std::vector<Vec3> out;
+  for (const Vec3& v : {Vec3(3e-5, 4e-5, -2e-3), Vec3(0.3, 0.4, -0.01)}) {
+    ContactKinematics k;
+    k.L = 0.025;
+    k.l = 0.02;
+    k.v = v;
+    k.long_axis = Vec3::UnitX();
+    k.dt = 1e-3;
+    ContactState state;
+    out.push_back(Law{}.force(k, p, state).on_a);
+  }
+  return out;
+}
+
+// The record of docs/contact/contact.md, "Adding a contact law", is one; a key outside contact_parameters is not.
+struct CubicPenalty {
+  double force(const ContactKinematics&, const ContactParams& p, double g, double) const { return p.alpha * g * g * g; }
+};
+struct CubicSceneLaw : SceneLawDefaults {
+  static constexpr std::string_view name = "cubic";
+  using law = ContactLaw<CubicPenalty, PaperSignDamping, PaperSignFriction>;
+  static constexpr bool cg_allowed = false;
+  static constexpr std::array<std::string_view, 3> parameters{"alpha_kgf", "mu", "mu_long"};
+};
+struct MisspeltSceneLaw : CubicSceneLaw {
+  static constexpr std::array<std::string_view, 1> parameters{"alpha"};
+};
+static_assert(SceneContactLaw<CubicSceneLaw>);
+static_assert(!SceneContactLaw<MisspeltSceneLaw>);
+
+template <class F>
+void for_each_law(F&& f) {
+  [&]<class... R>(LawList<R...>) { (f.template operator()<R>(), ...); }(scene_contact_laws{});
+}
+
+}  // namespace
+
+TEST_CASE("every contact law's name goes through the reader and the writer", "[scene][laws]") {
+  for_each_law([]<class R>() {
+    const std::string name(R::name);
+    INFO("law " << name);
+    const SceneSpec s = parse_scene_json(law_scene({{"law", name}}), "laws.json");
+    CHECK(s.contact.law == law_kind<R>);
+    CHECK(scene_law(s.contact.law).name == R::name);
+    const json written = to_json(s);
+    CHECK(written["contact"]["law"] == name);
+    CHECK(to_json(parse_scene_json(written, "laws.json")) == written);
+    if constexpr (R::default_implicit) CHECK(s.contact.implicit == *R::default_implicit);
+    // stick_length is written and read only for laws that use it.
+    CHECK(written["contact"].contains("stick_length") == R::own_stick_spring.empty());
+    const std::string stick =
+        input_error([&] { parse_scene_json(law_scene({{"law", name}, {"stick_length", 1e-4}}), "laws.json"); });
+    CHECK((stick == "no error") == R::own_stick_spring.empty());
+    // CG only where the record allows it.
+    json cg = law_scene({{"law", name}});
+    cg["solver"] = "cg";
+    const std::string solver = input_error([&] { parse_scene_json(cg, "laws.json"); });
+    CHECK((solver == "no error") == R::cg_allowed);
+    if (!R::cg_allowed) CHECK_THAT(solver, Contains("the law \"" + name + "\" runs with \"direct\""));
+  });
+  CHECK_THAT(input_error([] { parse_scene_json(law_scene({{"law", "coulomb"}}), "laws.json"); }),
+             Contains("expected one of: paper, paper_anisotropic, spring_dashpot, hunt_crossley, stick_slip, stiff"));
+}
+
+TEST_CASE("every key a contact law declares is read and changes its force", "[scene][laws]") {
+  for (const auto& p : contact_parameters) REQUIRE(key_values.count(p.key) == 1);
+  for_each_law([]<class R>() {
+    const std::string name(R::name);
+    const auto base = floor_forces<typename R::law>(floor_params(parse_scene_json(law_scene({{"law", name}}), "laws.json")));
+    for (std::string_view key : R::parameters) {
+      INFO("law " << name << ", key " << key);
+      const double value = key_values.at(key);
+      const SceneSpec s = parse_scene_json(law_scene({{"law", name}, {"floor", {{std::string(key), value}}}}), "laws.json");
+      CHECK(s.contact.floor.*(find_contact_parameter(key)->field) == value);
+      const auto changed = floor_forces<typename R::law>(floor_params(s));
+      CHECK((changed[0] != base[0] || changed[1] != base[1]));
+    }
+  });
+}
+
+TEST_CASE("every key a contact law does not declare is an error naming the key and the law", "[scene][laws]") {
+  for_each_law([]<class R>() {
+    const std::string name(R::name);
+    for (const auto& p : contact_parameters) {
+      if (scene_law(law_kind<R>).reads(p.key)) continue;
+      const std::string key(p.key);
+      for (const std::string pair : {"floor", "wall", "item"}) {
+        if (p.floor_only && pair != "floor") continue;
+        INFO("law " << name << ", " << pair << "." << key);
+        const json j = law_scene({{"law", name}, {pair, {{key, key_values.at(p.key)}}}});
+        CHECK_THAT(input_error([&] { parse_scene_json(j, "laws.json"); }),
+                   Contains("contact." + pair + "." + key) && Contains("not used by the contact law \"" + name + "\""));
+      }
+    }
+    for (std::string_view item_key : R::unused_item_parameters) {
+      const std::string key(item_key);
+      INFO("law " << name << ", item parameter " << key);
+      json j = law_scene({{"law", name}});
+      j["items"][0]["params"] = {{key, 1.0}};
+      CHECK_THAT(input_error([&] { validate(parse_scene_json(j, "laws.json")); }),
+                 Contains("items[0].params." + key) && Contains("not used by contact law \"" + name + "\""));
+    }
+  });
+}
+
+TEST_CASE("the contact key table of docs/scene/scene_file.md is the generated one", "[scene][laws][docs]") {
+  const auto in_docs = ffem_test::docs_block("scene/scene_file.md", "contact_law_table()");
+  REQUIRE(in_docs);
+  INFO("regenerate the block in docs/scene/scene_file.md from contact_law_table()");
+  CHECK(*in_docs == "\n" + contact_law_table() + "\n");
+  // The `law` row of the contact table names every law.
+  const std::string page = ffem_test::docs_page("scene/scene_file.md");
+  const auto row = page.find("| `law` | string |");
+  REQUIRE(row != std::string::npos);
+  const std::string law_row = page.substr(row, page.find('\n', row) - row);
+  for (const auto& law : scene_law_infos) CHECK_THAT(law_row, Contains("`" + std::string(law.name) + "`"));
+}
