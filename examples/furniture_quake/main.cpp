@@ -21,6 +21,8 @@
 #include <iostream>
 #include <string>
 
+#include "../common/interrupt.hpp"
+
 namespace {
 using namespace furniture_fem;
 
@@ -30,21 +32,16 @@ constexpr const char* git_hash = FFEM_GIT_HASH;  // the commit CMake was configu
 constexpr const char* git_hash = "";
 #endif
 
-enum ExitCode : int { exit_done = 0, exit_bad_input = 1, exit_usage = 2, exit_diverged = 3, exit_interrupted = 130 };
+enum ExitCode : int {
+  exit_done = 0,
+  exit_bad_input = 1,
+  exit_usage = 2,
+  exit_diverged = 3,
+  exit_interrupted = ffem_examples::exit_interrupted
+};
 
-std::atomic<bool> g_stop{false};
-// The first signal asks for a clean stop; a second one leaves at once (a phase that does not look
-// at the flag, such as building a large mesh, can still be cut short).
-extern "C" void on_interrupt(int) {
-  if (g_stop.exchange(true)) std::_Exit(exit_interrupted);
-}
-
-// Installed first thing, so that reading and validation are covered too. A signal the parent ignores
-// stays ignored (the convention for a script's background jobs, which Ctrl-C must not reach).
-void install_interrupt_handlers() {
-  for (int sig : {SIGINT, SIGTERM})
-    if (std::signal(sig, on_interrupt) == SIG_IGN) std::signal(sig, SIG_IGN);
-}
+std::atomic<bool>& g_stop = ffem_examples::interrupt_requested;  // Ctrl-C (../common/interrupt.hpp)
+using ffem_examples::install_interrupt_handlers;
 
 int interrupted(const std::string& phase) {
   std::cerr << "furniture_quake: interrupted " << phase << "; nothing run, nothing written\n";

@@ -20,6 +20,7 @@
 #include <string>
 #include <thread>
 
+#include "../common/interrupt.hpp"
 #ifdef FFEM_WITH_MPI
 #include "mpi_handout.hpp"
 #endif
@@ -27,16 +28,15 @@
 namespace {
 using namespace furniture_fem;
 
-enum ExitCode : int { exit_done = 0, exit_bad_input = 1, exit_usage = 2, exit_interrupted = 130 };
+enum ExitCode : int {
+  exit_done = 0,
+  exit_bad_input = 1,
+  exit_usage = 2,
+  exit_interrupted = ffem_examples::exit_interrupted
+};
 
-std::atomic<bool> g_stop{false};
-extern "C" void on_interrupt(int) {
-  if (g_stop.exchange(true)) std::_Exit(exit_interrupted);
-}
-void install_interrupt_handlers() {
-  for (int sig : {SIGINT, SIGTERM})
-    if (std::signal(sig, on_interrupt) == SIG_IGN) std::signal(sig, SIG_IGN);
-}
+std::atomic<bool>& g_stop = ffem_examples::interrupt_requested;  // Ctrl-C (../common/interrupt.hpp)
+using ffem_examples::install_interrupt_handlers;
 
 struct CommandLine {
   std::string study, out_dir;

@@ -53,6 +53,15 @@ std::string fresh_dir(const std::string& name) {
   return d;
 }
 
+// Options of a quiet study in a fresh folder of that name, on `workers` workers.
+StudyOptions quiet_study(const std::string& name, int workers = 1) {
+  StudyOptions o;
+  o.out_dir = fresh_dir(name);
+  o.workers = workers;
+  o.progress = false;
+  return o;
+}
+
 }  // namespace
 
 TEST_CASE("a realisation's parameters follow from the seed and its index alone", "[study]") {
@@ -142,14 +151,9 @@ TEST_CASE("each realisation slides as Coulomb says with its own friction and int
 
 TEST_CASE("the same realisations.csv with 1 and 2 workers, and after a resume", "[study]") {
   const StudySpec s = study_of(block_study(3));
-  StudyOptions one;
-  one.out_dir = fresh_dir("study_one_worker");
-  one.workers = 1;
-  one.progress = false;
+  const StudyOptions one = quiet_study("study_one_worker");
   REQUIRE(run_study(s, one) == "completed");
-  StudyOptions two = one;
-  two.out_dir = fresh_dir("study_two_workers");
-  two.workers = 2;
+  const StudyOptions two = quiet_study("study_two_workers", 2);
   REQUIRE(run_study(s, two) == "completed");
   const std::string reference = ffem_test::slurp(one.out_dir + "/realisations.csv");
   REQUIRE(reference.size() > 100);
@@ -184,10 +188,7 @@ TEST_CASE("the same realisations.csv with 1 and 2 workers, and after a resume", 
 
 TEST_CASE("a stopped study keeps what it finished and resumes the rest", "[study]") {
   const StudySpec s = study_of(block_study(3));
-  StudyOptions o;
-  o.out_dir = fresh_dir("study_stopped");
-  o.workers = 1;
-  o.progress = false;
+  StudyOptions o = quiet_study("study_stopped");
   const std::atomic<bool> stop{true};  // stopped before the first run
   CHECK(run_study(s, o, &stop) == "stopped");
   const json summary = json::parse(ffem_test::slurp(o.out_dir + "/summary.json"));
