@@ -4,12 +4,15 @@
 // and a run summary (JSON), a VTU/PVD time series for ParaView, and PNG figures.
 //
 //   furniture_quake [scene.json | --config K [--records DIR]] [--out DIR] [--duration S]
-//                   [--output-interval S] [--overwrite] [--no-figures] [--quiet]   (--help, --version)
+//                   [--output-interval S] [--overwrite] [--no-figures] [--quiet] [--checkpoint-every S]
+//                   [--resume DIR]   (--help, --version)
 //
 // The command line is parsed by CLI11. Exit codes: 0 done (also --help, --version), 1 bad input
 // (a scene or record file), 2 usage (a bad command line), 3 diverged, 130 interrupted. Ctrl-C or
-// SIGTERM, at any phase, stops cleanly: everything written so far stays readable; a second one
-// leaves at once.
+// SIGTERM, at any phase, stops cleanly: everything written so far stays readable, and a run stopped
+// while stepping writes a checkpoint (checkpoint.bin) that `--resume DIR` goes on from with the same
+// command line; a second one leaves at once. A long run also writes one every --checkpoint-every S of
+// wall time (default 600 s), so a killed run is not lost either.
 #include <furniture_fem/scene/scene_runner.hpp>
 
 #include <CLI/CLI.hpp>
@@ -71,6 +74,18 @@ CLI::Validator seconds() {
       "", "seconds");
 }
 
+// A period in s of wall time: 0 (never) or a finite number in (0, max_seconds].
+CLI::Validator period() {
+  return CLI::Validator(
+      [](std::string& w) -> std::string {
+        double x = 0;
+        if (!text::parse_finite(w, x)) return "not a finite number: '" + w + "'";
+        if (x < 0 || x > max_seconds) return "must be 0 (never) or a time in s of at most 1e6 (got " + w + ")";
+        return {};
+      },
+      "", "seconds");
+}
+
 CLI::Validator configuration_number() {
   return CLI::Validator(
       [](std::string& w) -> std::string {
@@ -87,16 +102,25 @@ void define_options(CLI::App& app, CommandLine& cl, RunOptions& opt) {
   auto* scene = app.add_option("scene", cl.scene, "scene file (JSON, docs/scene/scene_file.md); without one: "
                                                   "configuration 3, built-in synthetic 3-D motion, 10 s");
   scene->type_name("FILE");
-  app.add_option("--out", cl.out_dir, "results folder (default: the scene's outputs.folder)")->type_name("DIR");
+  auto* out = app.add_option("--out", cl.out_dir, "results folder (default: the scene's outputs.folder)");
+  out->type_name("DIR");
   app.add_option("--duration", cl.duration, "simulated time in s, instead of the scene's")
       ->type_name("S")->check(seconds());
   app.add_option("--output-interval", opt.output_interval, "history rows every S s of simulated time")
       ->type_name("S")->check(seconds())->capture_default_str();
-  app.add_flag_callback("--overwrite", [&opt] { opt.overwrite = true; },
+  auto* overwrite = app.add_flag_callback("--overwrite", [&opt] { opt.overwrite = true; },
                         "write into a non-empty folder that no run wrote (or whose run.json says "
                         "\"running\"): its old results are removed first, other files are kept");
   app.add_flag_callback("--no-figures", [&opt] { opt.figures = false; }, "write no PNG figures");
   app.add_flag_callback("--quiet", [&opt] { opt.progress = false; }, "no progress bar");
+  app.add_option("--checkpoint-every", opt.checkpoint_every,
+                 "write the run's whole state to checkpoint.bin every S s of wall time (0: only when stopped)")
+      ->type_name("S")->check(period())->capture_default_str();
+  auto* resume = app.add_option_function<std::string>(
+      "--resume", [&cl, &opt](const std::string& dir) { cl.out_dir = dir, opt.resume = true; },
+      "go on with the stopped or killed run in results folder DIR from its checkpoint (give the same scene and "
+      "options as that run)");
+  resume->type_name("DIR")->excludes(out)->excludes(overwrite);
   auto* config = app.add_option("--config", cl.config, "the paper's configuration K (1, 2, 3) under the JMA-Kobe records");
   config->type_name("K")->check(configuration_number())->excludes(scene);
   app.add_option("--records", cl.records, "folder of the JMA-Kobe records for --config")
@@ -164,6 +188,7 @@ int main(int argc, char** argv) {
   CLI::App app("Runs a furniture scene under a ground motion and writes a results folder.", "furniture_quake");
   CommandLine cl;
   RunOptions opt;
+  opt.checkpoint_every = 600;  // a killed run keeps at most 10 minutes' work to do again
   define_options(app, cl, opt);
   app.failure_message(usage_error);
   try {

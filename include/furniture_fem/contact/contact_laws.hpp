@@ -121,6 +121,7 @@ constexpr double paper_mu(double static_mu) { return 0.8 * static_mu; }
 // a copy of the state committed at the end of the previous step each time, and keeps the copy of
 // the last evaluation when the step is accepted.
 struct ContactState {
+  static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
   Vec3 elongation = Vec3::Zero();  // m: tangential spring elongation, world frame (StickSlip)
   bool sticking = false;           // stick flag of the last evaluation
   Vec3 normal = Vec3::Zero();      // last contact normal (orients a degenerate normal); 0: none yet

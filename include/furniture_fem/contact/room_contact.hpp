@@ -64,6 +64,7 @@ struct RigidPlane {
 // Sum of contact force magnitudes between two bodies (or a body and the floor/walls: -1 / -2) in
 // the last evaluation, for the per-pair force histories.
 struct PairForce {
+  static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
   int body_a, body_b;
   Vec3 force_on_a;
 };
@@ -271,6 +272,17 @@ class RoomContact {
     node_state_.swap(node_trial_);
     pair_state_.swap(pair_trial_);  // pairs out of contact forget their history
     pair_trial_.clear();
+  }
+
+  // Its history for a checkpoint (core/checkpoint.hpp): the committed and trial contact states, the
+  // broad phase's candidates and the positions it ran at, and the last evaluation's forces, slopes and
+  // statuses (the step that follows reads them).
+  template <class Self, class Archive>
+    requires std::is_same_v<std::remove_const_t<Self>, RoomContact>
+  friend void transfer_state(Self& c, Archive& ar) {
+    ar(c.node_state_, c.node_trial_, c.pair_state_, c.pair_trial_, c.candidates_, c.x_broad_);
+    ar(c.pair_forces_, c.tangents_, c.pair_tangents_, c.implicit_pairs_, c.plane_applied_, c.plane_status_, c.share_);
+    ar(c.steps_, c.broad_runs_, c.active_);
   }
 
   const std::vector<PairForce>& pair_forces() const { return pair_forces_; }
@@ -546,6 +558,7 @@ class RoomContact {
   std::vector<NodalContactTangent> tangents_;
   std::vector<PairContactTangent> pair_tangents_;
   struct ImplicitPair {
+    static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
     int ea, eb;
     Vec3 reported;  // its share of pair_forces_ at the evaluation
   };

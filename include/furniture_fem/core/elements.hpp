@@ -128,6 +128,7 @@ struct ShiftedIntegrationTimoshenko {
       Placement::needs_pairs ? std::string_view("ASI-Gauss Timoshenko") : std::string_view("one-point Timoshenko (s = 0)");
 
   struct State {
+    static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
     double s = 0;              // integration point
     int hinge = 0;             // 0 elastic, -1 / +1 plastic hinge at that end
     Vec6 eps_p = Vec6::Zero(); // plastic generalised strains (N, Mx, My, Mz), plus the initial
@@ -288,6 +289,7 @@ struct CubicEulerBernoulli {
   static constexpr bool needs_pairs = false;
   static constexpr std::string_view name = "cubic Euler-Bernoulli";
   struct State {
+    static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
     double s = 0;
     int hinge = 0;
   };

@@ -25,6 +25,7 @@
 #include <span>
 #include <vector>
 
+#include "checkpoint.hpp"
 #include "elements.hpp"
 #include "integrators.hpp"
 #include "model.hpp"
@@ -77,6 +78,16 @@ struct ContactView {
 struct NoContact {
   void add_forces(const ContactView&, Eigen::VectorXd&) {}
 };
+template <class Self, class Archive>
+  requires std::is_same_v<std::remove_const_t<Self>, NoContact>
+void transfer_state(Self&, Archive&) {}  // no history
+
+// A contact policy whose history a checkpoint can hold (core/checkpoint.hpp): transfer_state lists it.
+template <class C>
+concept CheckpointableContact = requires(const C& c, C& m, StateWriter& w, StateReader& r) {
+  transfer_state(c, w);
+  transfer_state(m, r);
+};
 
 template <class C>
 concept ContactPolicy = requires(C c, const ContactView& view, Eigen::VectorXd& f) { c.add_forces(view, f); };
@@ -86,6 +97,7 @@ concept ContactPolicy = requires(C c, const ContactView& view, Eigen::VectorXd& 
 // (nodal_tangents()) has them inside the implicit step: each body's solve adds them to its
 // effective matrix as a low-rank update of its factorisation (docs/contact/implicit_contact.md).
 struct NodalContactTangent {
+  static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
   int node = -1;
   Mat3 K = Mat3::Zero(), C = Mat3::Zero();
   Vec3 x = Vec3::Zero(), v = Vec3::Zero();
@@ -97,6 +109,7 @@ struct NodalContactTangent {
 // relative displacement of a's point from b's. When both bodies are rigid the simulation solves them
 // in one system with these terms (rigid groups); otherwise the force stays a load of the predictor.
 struct PairContactTangent {
+  static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
   int body_a = -1, body_b = -1;
   int a0 = -1, a1 = -1, b0 = -1, b1 = -1;
   double s = 0, t = 0;
@@ -144,12 +157,14 @@ concept BodyPlaneContactPolicy = ImplicitContactPolicy<C> && requires(const C c,
 // factorisation, substitution, finite-rotation update), `factorize` (the factorisations alone, part
 // of `solve`) and `elements` (kinematic update and element forces).
 struct StepTimings {
+  static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
   double elements = 0, contact = 0, solve = 0, factorize = 0, bodies = 0, total = 0;
   double other() const { return total - contact - bodies; }  // predictor, loads, checks (wall)
 };
 
 // The energy ledger (J): what the structure holds, and the work done on it.
 struct EnergyLedger {
+  static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
   double kinetic = 0, strain = 0, gravity_potential = 0;
   double external_work = 0;   // base excitation inertial forces and nodal loads
   double contact_work = 0;    // work of contact forces (negative: friction and damping dissipate)
@@ -425,9 +440,27 @@ class Simulation {
     return e;
   }
   long factorizations() const {
-    long f = 0;
+    long f = factorizations_offset_;
     for (const auto& s : solvers_) f += s->factorizations();
     return f;
+  }
+
+  // ---- checkpoint (core/checkpoint.hpp, docs/core/checkpoint.md) ----
+  // Everything a step reads that an earlier step wrote: time, displacements, rotations, velocities,
+  // accelerations, the forces carried over, the elements' integration points and hinges, the rigid
+  // groups, the energy ledger, each body's matrix as last factorised, and the contact's history.
+  // Loaded into a simulation built the same way (same model, options and policies), the next steps
+  // are those of the simulation that saved it, to the bit.
+  void save_state(StateWriter& w) const {
+    static_assert(CheckpointableContact<Contact>, "furniture_fem: checkpoints need the contact policy's "
+                                                  "transfer_state (core/checkpoint.hpp)");
+    transfer_state_of(*this, w);
+  }
+  void load_state(StateReader& r) {
+    static_assert(CheckpointableContact<Contact>, "furniture_fem: checkpoints need the contact policy's "
+                                                  "transfer_state (core/checkpoint.hpp)");
+    transfer_state_of(*this, r);
+    refactorise_loaded_matrices();
   }
   const SimulationOptions& options() const { return opt_; }
   const StepTimings& timings() const { return timings_; }
@@ -737,6 +770,64 @@ class Simulation {
   }
 
   bool is_fixed(int dof) const { return (model_.node(dof / 6).fixed >> (dof % 6)) & 1u; }
+
+  template <class Self, class Archive>
+  static void transfer_state_of(Self& s, Archive& ar) {
+    std::array<std::size_t, 3> counts{static_cast<std::size_t>(s.model_.num_nodes()),
+                                      static_cast<std::size_t>(s.model_.num_elements()),
+                                      static_cast<std::size_t>(s.model_.num_bodies())};
+    if constexpr (Archive::saving) {
+      ar(counts);
+    } else {
+      std::array<std::size_t, 3> stored{};
+      ar(stored);
+      ar.expect(stored[0], counts[0], "nodes");
+      ar.expect(stored[1], counts[1], "elements");
+      ar.expect(stored[2], counts[2], "bodies");
+    }
+    ar(s.t_, s.load_factor_, s.t_state_, s.steps_, s.started_, s.static_);
+    ar(s.x_, s.u_, s.u0_, s.R_, s.R0_);
+    ar(s.v_, s.a_, s.vn_, s.an_, s.v_contact_, s.Du_, s.r_, s.fint_, s.fext0_, s.fext1_, s.fc0_, s.fc1_, s.fnet0_,
+       s.nodal_load_, s.fgrav_, s.contact_delta_);
+    ar(s.predictor_shift_, s.pair_predictor_shift_, s.pair_active_, s.contact_iterated_, s.groups_, s.group_pairs_,
+       s.group_of_);
+    ar(s.frames_, s.d_, s.fl_, s.committed_, s.trial_, s.ledger_, s.timings_);
+    for (auto& bs : s.systems_) {
+      // The matrix's values in its fixed pattern: as factorised, unless assembled for the next refresh.
+      const std::size_t nnz = static_cast<std::size_t>(bs.K.nonZeros());
+      if constexpr (Archive::saving) {
+        ar(nnz);
+        for (std::size_t i = 0; i < nnz; ++i) ar(bs.K.valuePtr()[i]);
+      } else {
+        std::size_t stored = 0;
+        ar(stored);
+        ar.expect(stored, nnz, "matrix entries of a body");
+        for (std::size_t i = 0; i < nnz; ++i) ar(bs.K.valuePtr()[i]);
+      }
+      ar(bs.Q_factor, bs.steps_since_refresh, bs.needs_refresh, bs.assembled, bs.rigid, bs.rigid_c0, bs.rigid_dc,
+         bs.rigid_Q, bs.contact, bs.contact_factored, bs.factored_nodes, bs.contact_columns, bs.contact_column,
+         bs.contact_columns_used, bs.r, bs.dx, bs.work);
+    }
+    long factorizations = s.factorizations();
+    ar(factorizations);
+    if constexpr (!Archive::saving) s.factorizations_offset_ = factorizations;
+    ar(s.contact_);
+  }
+  // A flexible body whose factorisation the next steps reuse gets it again from the loaded matrix (the
+  // same values give the same factor); the count of factorisations stays the saved run's.
+  void refactorise_loaded_matrices() {
+    for (int b = 0; b < model_.num_bodies(); ++b) {
+      auto& bs = systems_[b];
+      if (bs.rigid || bs.needs_refresh || bs.steps_since_refresh >= opt_.refresh_interval_steps) continue;
+      if (bs.assembled)
+        throw std::logic_error("furniture_fem: body " + std::to_string(b) + "'s matrix was assembled after its "
+                               "factorisation but is not due a refresh: the checkpoint cannot restore its factor");
+      solvers_[b]->factorize(bs.K);
+    }
+    long made = 0;
+    for (const auto& solver : solvers_) made += solver->factorizations();
+    factorizations_offset_ -= made;
+  }
 
   // What the loads are at time t: the table's acceleration, the scale of the nodal loads and spring
   // targets, and the factor on gravity (statics ramps it with the load factor). Evaluated once per
@@ -1697,6 +1788,7 @@ class Simulation {
   double t_state_ = 0;  // time of the current configuration: t_ between steps, t_{n+1} during a step
   long steps_ = 0;
   bool started_ = false, static_ = false;
+  long factorizations_offset_ = 0;  // a loaded checkpoint's count, less the factorisations loading made
 
   std::vector<Vec3> x_, u_, u0_;  // positions, displacements (kept apart for precision)
   std::vector<Mat3> R_, R0_;

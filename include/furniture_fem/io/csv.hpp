@@ -7,6 +7,8 @@
 // that lacks its newline (the row being written when the run died) and reports it via truncated().
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <stdexcept>
@@ -51,6 +53,31 @@ class CsvWriter {
     buf_ += '\n';
     flush();  // the header is on disk even if the first row never comes
   }
+  // Where a checkpoint leaves the file: its length in bytes (flushed) and its rows.
+  struct Position {
+    static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
+    std::uint64_t bytes = 0, rows = 0;
+  };
+  // Goes on with a file a checkpoint left at `at` (RunOptions::resume): what a run stopped later wrote
+  // after it is cut off, and rows follow without a second header. The file must be at least that long.
+  CsvWriter(std::string path, std::vector<std::string> columns, Position at, CsvOptions opt = {})
+      : path_(std::move(path)), columns_(std::move(columns)), opt_(opt), rows_(at.rows), bytes_(at.bytes) {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path_, ec);
+    if (ec || size < at.bytes)
+      throw InputError(path_, 0, "",
+                       "cannot go on from the checkpoint: the file " +
+                           (ec ? "is missing (" + ec.message() + ")" : "has " + std::to_string(size) + " bytes") +
+                           " where the checkpoint wrote " + std::to_string(at.bytes) + " (changed after the run stopped?)");
+    std::filesystem::resize_file(path_, at.bytes, ec);
+    if (ec) throw OutputError("CsvWriter: cannot cut '" + path_ + "' back to the checkpoint: " + ec.message());
+    file_.open(path_, std::ios::binary | std::ios::app);
+    if (!file_) throw OutputError("CsvWriter: cannot open '" + path_ + "' for writing");
+  }
+  Position position() {
+    flush();
+    return {bytes_, rows_};
+  }
   CsvWriter(const CsvWriter&) = delete;
   CsvWriter& operator=(const CsvWriter&) = delete;
   ~CsvWriter() {
@@ -82,6 +109,7 @@ class CsvWriter {
   void flush() {
     if (!buf_.empty()) {
       file_.write(buf_.data(), std::streamsize(buf_.size()));
+      bytes_ += buf_.size();
       buf_.clear();
     }
     file_.flush();
@@ -104,6 +132,7 @@ class CsvWriter {
   std::ofstream file_;
   std::string buf_;
   std::size_t rows_ = 0, pending_ = 0;
+  std::uint64_t bytes_ = 0;  // written to the file
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
 };
 

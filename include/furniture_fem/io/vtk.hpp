@@ -19,6 +19,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <system_error>
 #include <vector>
 #include <zlib.h>
@@ -364,10 +365,22 @@ class PvdWriter {
   std::size_t size() const { return entries_.size(); }
   const std::string& path() const { return path_; }
 
+  // The frames listed so far, for a checkpoint (core/checkpoint.hpp).
+  template <class Self, class Archive>
+    requires std::is_same_v<std::remove_const_t<Self>, PvdWriter>
+  friend void transfer_state(Self& p, Archive& ar) {
+    ar(p.entries_);
+  }
+
  private:
   struct Entry {
     double time;
     std::string file;
+    template <class Self, class Archive>
+      requires std::is_same_v<std::remove_const_t<Self>, Entry>
+    friend void transfer_state(Self& e, Archive& ar) {
+      ar(e.time, e.file);
+    }
   };
   std::string path_;
   std::vector<Entry> entries_;

@@ -52,6 +52,14 @@ struct RunOptions {
   double output_interval = 0.01;
   const std::atomic<bool>* stop = nullptr;    // set by a signal handler to stop cleanly
   std::optional<bool> figures;                // overrides outputs.figures
+  // Checkpoints (docs/io/output.md, "Checkpoints"): every this many seconds of wall time the run writes
+  // its whole state to checkpoint.bin in the results folder (atomically); 0: only when stopped (a stop
+  // request writes one before the run ends). A run that completes or diverges removes it.
+  double checkpoint_every = 0;
+  // Go on with the run whose checkpoint is in the results folder (stopped or killed): the same scene and
+  // options (checked), its files cut back to the checkpoint and continued; the results are those of the
+  // run that was never stopped, to the bit.
+  bool resume = false;
   // A run that creates energy cannot be trusted: it ends as "diverged", with a diagnosis, as soon as
   // the contact forces' net work or the ledger's imbalance exceeds this fraction of the ledger's scale
   // (the contact laws only store and dissipate energy, the integrators only dissipate; checked at
@@ -154,6 +162,9 @@ class SimulationView {
 class SteppedSimulation : public SimulationView {
  public:
   virtual StepInfo step() = 0;
+  // Simulation::save_state / load_state (core/checkpoint.hpp).
+  virtual void save_state(StateWriter& w) const = 0;
+  virtual void load_state(StateReader& r) = 0;
 };
 
 namespace detail {
@@ -172,6 +183,8 @@ class SimulationViewOf final : public SteppedSimulation {
  public:
   explicit SimulationViewOf(Sim& sim) : sim_(sim) {}
   StepInfo step() override { return sim_.step(); }
+  void save_state(StateWriter& w) const override { sim_.save_state(w); }
+  void load_state(StateReader& r) override { sim_.load_state(r); }
   double time() const override { return sim_.time(); }
   long steps() const override { return sim_.steps(); }
   const Vec3& position(int n) const override { return sim_.position(n); }
@@ -243,12 +256,19 @@ struct RunView {
 //                          observers before this one added (final states, section peaks).
 // An observer reads the simulation through run.sim only, so it cannot change the run's results. A
 // SimulationError thrown from after_step ends the run as "diverged"; any other exception leaves run_scene.
+//
+// Checkpoints (RunOptions::checkpoint_every, resume; docs/io/output.md, "Checkpoints"): save(w) writes
+// what the observer needs to go on (its files flushed first); on a resumed run, resume(run, r) is
+// called instead of begin: it reads that back and reopens its files where the checkpoint left them.
+// An observer that keeps nothing from one call to the next needs neither.
 class RunObserver {
  public:
   virtual ~RunObserver() = default;
   virtual void begin(const RunView& run) {}
   virtual void after_step(const RunView& run, const StepInfo& step) {}
   virtual void end(const RunView& run, RunSummary& summary) {}
+  virtual void save(StateWriter&) {}
+  virtual void resume(const RunView&, StateReader&) {}
 };
 
 // Angle of a body's vertical axis from the vertical (deg), from its best rigid rotation.

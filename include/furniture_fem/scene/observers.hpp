@@ -104,6 +104,11 @@ class TableMotionIntegrator {
   const Vec3& acceleration() const { return a_; }
   const Vec3& velocity() const { return v_; }
   const Vec3& displacement() const { return d_; }
+  template <class Self, class Archive>
+    requires std::is_same_v<std::remove_const_t<Self>, TableMotionIntegrator>
+  friend void transfer_state(Self& m, Archive& ar) {
+    ar(m.t_, m.a_, m.v_, m.d_);
+  }
 
  private:
   double t_ = 0;
@@ -175,6 +180,7 @@ class ProgressBar : public RunObserver {
   }
   void after_step(const RunView& run, const StepInfo&) override { update(run.sim.time(), run.t_end, false); }
   void end(const RunView& run, RunSummary&) override { update(run.sim.time(), run.t_end, true); }
+  void resume(const RunView& run, StateReader&) override { begin(run); }
 
  private:
   std::chrono::steady_clock::time_point start_;
@@ -220,6 +226,8 @@ class FinalStates : public RunObserver {
       if (summary.status == "diverged") summary.items.back().state = "diverged";
     }
   }
+  void save(StateWriter& w) override { w(max_tilt_, settle_fz_on_a_, settle_steps_); }
+  void resume(const RunView&, StateReader& r) override { r(max_tilt_, settle_fz_on_a_, settle_steps_); }
 
  private:
   std::vector<double> max_tilt_;
@@ -283,6 +291,22 @@ class FinalStates : public RunObserver {
 class SectionPeaks : public RunObserver {
  public:
   void begin(const RunView& run) override {
+    name_peaks(run);
+    track(run);
+  }
+  void after_step(const RunView& run, const StepInfo&) override { track(run); }
+  void end(const RunView&, RunSummary& summary) override { summary.section_peaks = peaks_; }
+  void save(StateWriter& w) override {
+    for (const auto& pk : peaks_) w(pk.min, pk.max, pk.t_min, pk.t_max);
+  }
+  void resume(const RunView& run, StateReader& r) override {
+    name_peaks(run);
+    for (auto& pk : peaks_) r(pk.min, pk.max, pk.t_min, pk.t_max);
+  }
+
+ private:
+  std::vector<SectionForcePeak> peaks_;
+  void name_peaks(const RunView& run) {
     for (const auto& s : run.requests.sections) {
       SectionForcePeak pk;
       pk.section = s.name;
@@ -292,13 +316,7 @@ class SectionPeaks : public RunObserver {
       pk.t_max.fill(0);
       peaks_.push_back(pk);
     }
-    track(run);
   }
-  void after_step(const RunView& run, const StepInfo&) override { track(run); }
-  void end(const RunView&, RunSummary& summary) override { summary.section_peaks = peaks_; }
-
- private:
-  std::vector<SectionForcePeak> peaks_;
   void track(const RunView& run) {
     const double t = run.sim.time();
     for (size_t i = 0; i < peaks_.size(); ++i) {
@@ -375,8 +393,14 @@ class EnergyCheck : public RunObserver {
     }
     summary.energy = v_;
   }
+  void save(StateWriter& w) override { transfer(w); }
+  void resume(const RunView&, StateReader& r) override { transfer(r); }
 
  private:
+  template <class Archive>
+  void transfer(Archive& ar) {
+    ar(prev_, t_prev_, v_.t_from, v_.t_to, v_.imbalance_step, v_.term, v_.term_step);
+  }
   EnergyLedger prev_;
   double t_prev_ = 0;
   EnergyVerdict v_;
@@ -393,8 +417,21 @@ class RowHistory : public RunObserver {
     if (run.row_due()) write_row(run);
   }
   void end(const RunView&, RunSummary&) override { csv_->flush(); }
+  void save(StateWriter& w) override {
+    w(csv_->position());
+    save_rows(w);
+  }
+  void resume(const RunView& run, StateReader& r) override {
+    CsvWriter::Position at;
+    r(at);
+    csv_.emplace(run.out_dir + "/" + file(), columns(run), at);
+    resume_rows(r);
+  }
 
  protected:
+  // What a history keeps from row to row, for a checkpoint.
+  virtual void save_rows(StateWriter&) {}
+  virtual void resume_rows(StateReader&) {}
   virtual std::string file() const = 0;
   virtual std::vector<std::string> columns(const RunView& run) const = 0;
   virtual void write_row(const RunView& run) = 0;
@@ -425,6 +462,8 @@ class MarkerHistory : public RowHistory {
   detail::TableMotionIntegrator table_;
   std::vector<Vec3> v_prev_;  // each marker's absolute velocity at the previous row (m/s)
   double t_prev_ = 0;
+  void save_rows(StateWriter& w) override { w(table_, v_prev_, t_prev_); }
+  void resume_rows(StateReader& r) override { r(table_, v_prev_, t_prev_); }
 
   std::string file() const override { return "markers.csv"; }
   std::vector<std::string> columns(const RunView& run) const override {
@@ -508,13 +547,9 @@ class ContactForceHistory : public RunObserver {
     return out;
   }
   void begin(const RunView& run) override {
-    std::vector<std::string> cols{"t"};
-    for (const auto& [pair, prefix] : pairs(run)) {
-      column_.emplace(pair, cols.size());
-      for (const char* c : {"_fx", "_fy", "_fz"}) cols.push_back(prefix + c);
-    }
+    const std::vector<std::string> cols = columns(run);
     row_.assign(cols.size(), 0.0);
-    csv_.emplace(run.out_dir + "/contact_forces.csv", cols);
+    csv_.emplace(path(run), cols);
     for (const auto& pf : run.sim.pair_forces()) add(pf.body_a, pf.body_b, pf.force_on_a);
     steps_ = 1;
     write(run.sim.time());
@@ -525,8 +560,25 @@ class ContactForceHistory : public RunObserver {
     if (run.row_due()) write(run.sim.time());
   }
   void end(const RunView&, RunSummary&) override { csv_->flush(); }
+  void save(StateWriter& w) override { w(csv_->position(), row_, steps_); }
+  void resume(const RunView& run, StateReader& r) override {
+    CsvWriter::Position at;
+    r(at, row_, steps_);
+    csv_.emplace(path(run), columns(run), at);
+  }
 
  private:
+  static std::string path(const RunView& run) { return run.out_dir + "/contact_forces.csv"; }
+  // The header, and each pair's first column in column_.
+  std::vector<std::string> columns(const RunView& run) {
+    std::vector<std::string> cols{"t"};
+    column_.clear();
+    for (const auto& [pair, prefix] : pairs(run)) {
+      column_.emplace(pair, cols.size());
+      for (const char* c : {"_fx", "_fy", "_fz"}) cols.push_back(prefix + c);
+    }
+    return cols;
+  }
   std::optional<CsvWriter> csv_;
   std::map<std::pair<int, int>, std::size_t> column_;  // the pair's _fx column
   std::vector<double> row_;                            // the force sums since the previous row
@@ -566,6 +618,8 @@ class InputMotionHistory : public RowHistory {
 
  private:
   detail::TableMotionIntegrator table_;
+  void save_rows(StateWriter& w) override { w(table_); }
+  void resume_rows(StateReader& r) override { r(table_); }
   std::string file() const override { return "input_motion.csv"; }
   std::vector<std::string> columns(const RunView&) const override {
     return {"t", "ax", "ay", "az", "vx", "vy", "vz", "dx", "dy", "dz"};
@@ -587,6 +641,13 @@ class VtuSeries : public RunObserver {
   }
   void after_step(const RunView& run, const StepInfo&) override {
     if (run.sim.steps() % run.spec.outputs.vtu_every == 0) write_frame(run);
+  }
+  void save(StateWriter& w) override { w(*pvd_); }
+  // The frames after the checkpoint are written again, under the same names.
+  void resume(const RunView& run, StateReader& r) override {
+    std::filesystem::create_directories(run.out_dir + "/vtu");
+    pvd_.emplace(run.out_dir + "/room.pvd");
+    r(*pvd_);
   }
 
  private:
@@ -681,6 +742,8 @@ class Figures : public RunObserver {
     draw_input_motion(run);
     draw_room(run);
   }
+  void save(StateWriter& w) override { w(t_, marker_series_, shear_series_, motion_series_, table_); }
+  void resume(const RunView&, StateReader& r) override { r(t_, marker_series_, shear_series_, motion_series_, table_); }
 
  private:
   std::vector<double> t_;

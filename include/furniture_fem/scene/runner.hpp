@@ -22,6 +22,7 @@
 #include "observer.hpp"
 #include "observers.hpp"
 #include "results_folder.hpp"
+#include "run_checkpoint.hpp"
 #include "scene_simulation.hpp"
 
 namespace furniture_fem {
@@ -153,6 +154,11 @@ class RunRecord {
           {"scene", to_json(spec)}};
     write();
   }
+  // A resumed run: from when (s of simulated time).
+  void note_resume(double t) {
+    j_["resumed_from_t_s"] = t;
+    write();
+  }
   // The end: status, the summary's status word and diagnosis (or the error), end time, wall time, and
   // the results files in the folder.
   void finish(const std::string& status, const std::string& summary_status, const std::string& diagnosis,
@@ -272,7 +278,8 @@ inline void check_energy_creation(const RunView& run, const ContactStepEstimate&
 }
 
 inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, const ComposedScene& scene,
-                                  const std::vector<RunObserver*>& extra, const RunStart& t_start);
+                                  const std::vector<RunObserver*>& extra, const RunStart& t_start,
+                                  RunRecord* record = nullptr);
 
 // Clears the results folder, writes run.json (status "running"), runs, and writes run.json again as
 // the last file: its final status, or "failed" and the error when an exception leaves the run.
@@ -280,11 +287,11 @@ inline RunSummary run_observed(const SceneSpec& spec, const RunOptions& opt, con
                                const std::vector<RunObserver*>& extra, const RunStart& t_start) {
   const std::string out_dir = results_folder_of(spec, opt);
   if (out_dir.empty()) return run_observed_in(spec, opt, scene, extra, t_start);
-  prepare_results_folder(out_dir, opt.overwrite);
+  if (!opt.resume) prepare_results_folder(out_dir, opt.overwrite);
   RunRecord record(spec, opt, out_dir, t_start);
   RunSummary sum;
   try {
-    sum = run_observed_in(spec, opt, scene, extra, t_start);
+    sum = run_observed_in(spec, opt, scene, extra, t_start, &record);
   } catch (const std::exception& e) {
     try {
       record.finish("failed", "", "", e.what());
@@ -297,7 +304,7 @@ inline RunSummary run_observed(const SceneSpec& spec, const RunOptions& opt, con
 }
 
 inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, const ComposedScene& scene,
-                                  const std::vector<RunObserver*>& extra, const RunStart& t_start) {
+                                  const std::vector<RunObserver*>& extra, const RunStart& t_start, RunRecord* record) {
   SteppedSimulation& sim = scene.sim;
   const ResolvedOutputs requests = resolve_output_requests(spec, scene.model, scene.items);
   const double t_end = opt.duration.value_or(spec.duration);
@@ -329,15 +336,41 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
   for (const auto& o : standard) observers.push_back(o.get());
   observers.insert(observers.end(), extra.begin(), extra.end());
 
-  for (RunObserver* o : observers) o->begin(run);
+  // A checkpoint, or going on from one, needs the results folder (checkpoint.bin).
+  const nlohmann::json fingerprint = run.out_dir.empty() ? nlohmann::json() : checkpoint_fingerprint(spec, opt);
+  EnergyLedger trusted = run.row_energy;  // the ledger of the last row that passed the energy check
+  double wall_before = 0;                 // a resumed run: the wall time of its earlier parts
+  if (opt.resume) {
+    if (run.out_dir.empty()) throw InputError("RunOptions", 0, "resume", "a run that writes no files has no checkpoint");
+    const RunnerState saved = resume_from_checkpoint(run.out_dir, fingerprint, sim, observers, run);
+    run.row_energy = saved.row_energy;
+    trusted = saved.trusted;
+    sum.max_energy_imbalance = saved.max_energy_imbalance;
+    wall_before = saved.wall_seconds;
+    if (record) record->note_resume(sim.time());
+  } else {
+    for (RunObserver* o : observers) o->begin(run);
+  }
+  const auto wall_now = [&] {
+    return wall_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start.steady).count();
+  };
+  const auto checkpoint = [&] {
+    write_checkpoint(run.out_dir, fingerprint, {run.row_energy, trusted, sum.max_energy_imbalance, wall_now()}, sim,
+                     observers);
+  };
+  auto last_checkpoint = std::chrono::steady_clock::now();
+  const bool periodic = !run.out_dir.empty() && opt.checkpoint_every > 0;
   LastStepView last(sim, scene.model, requests);
   last.capture();
-  EnergyLedger trusted = run.row_energy;  // the ledger of the last row that passed the energy check
   try {
     while (sim.time() < run.t_end - 0.5 * spec.dt) {
       if (opt.stop && opt.stop->load()) {
         sum.status = "stopped";
         sum.diagnosis = "stopped by the user (interrupt) at t = " + std::to_string(sim.time()) + " s";
+        if (!run.out_dir.empty()) {
+          checkpoint();
+          sum.diagnosis += "; resume with --resume (RunOptions::resume)";
+        }
         break;
       }
       const StepInfo step = sim.step();
@@ -356,6 +389,11 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
       }
       for (RunObserver* o : observers) o->after_step(run, step);
       last.capture();
+      if (periodic && std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() >=
+                          opt.checkpoint_every) {
+        checkpoint();
+        last_checkpoint = std::chrono::steady_clock::now();
+      }
     }
   } catch (const SimulationError& e) {
     sum.status = "diverged";
@@ -373,12 +411,17 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
   if (diverged) sum.t_diverged = last.time() + spec.dt;
   sum.steps = end_state.steps();
   sum.factorizations = sim.factorizations();
-  sum.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start.steady).count();
+  sum.wall_seconds = wall_now();
   const RunView end_view{run.spec,      run.model,   run.items, run.motion,
                          run.rigid_bodies, run.requests, end_state, run.options,
                          run.out_dir,   run.t_end,   run.row_interval_steps, run.settle_from,
                          diverged ? trusted : run.row_energy};
   for (RunObserver* o : observers) o->end(end_view, sum);
+  // Only a stopped run is to be gone on with (a killed one keeps its last periodic checkpoint).
+  if (!run.out_dir.empty() && sum.status != "stopped") {
+    std::error_code ignored;
+    std::filesystem::remove(detail::checkpoint_path(run.out_dir), ignored);
+  }
   return sum;
 }
 
@@ -406,7 +449,10 @@ inline RunSummary run_scene(const SceneSpec& spec, const RunOptions& opt = {}, c
   // record is small): a record's unit, window, filter and scale, and the run's length against it.
   check_motion_covers_run(spec, opt, scene_table_motion(spec));
   // A results folder that must not be written into fails before the model is built, too.
-  if (const std::string out = results_folder_of(spec, opt); !out.empty()) check_results_folder(out, opt.overwrite);
+  if (const std::string out = results_folder_of(spec, opt); !out.empty()) {
+    if (opt.resume) check_resumable_folder(out);
+    else check_results_folder(out, opt.overwrite);
+  }
   // The law's record picks the ContactLaw; CG only where the record allows it (validate() refuses the rest).
   const bool direct = spec.solver == SolverKind::direct;
   RunSummary sum;

@@ -88,6 +88,7 @@ struct BodySystem {
   // nodes whose term has changed since, kept until the next factorisation (a node's three columns start
   // at contact_column[local]).
   struct ContactTerm {
+    static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
     int local;
     Mat3 K;
   };

@@ -1,0 +1,141 @@
+#pragma once
+// furniture_fem/scene/run_checkpoint.hpp: a run's checkpoint file (RunOptions::checkpoint_every and
+// resume; docs/io/output.md, "Checkpoints").
+//
+//   checkpoint.bin in the results folder, written atomically (".tmp" and rename):
+//     a magic line, the fingerprint (the scene and the run options that shape the results, as JSON),
+//     the runner's own state, the simulation's (Simulation::save_state), then each observer's (its
+//     files flushed first, and where they end).
+//
+// A resumed run reads it back into a run built from the same scene and options; anything that does not
+// fit (another scene or option, a truncated file, another version) is an InputError naming the file
+// and, for a changed setting, the key that differs.
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "observer.hpp"
+#include "results_folder.hpp"
+#include "writer.hpp"
+
+namespace furniture_fem {
+
+inline constexpr const char* checkpoint_file = "checkpoint.bin";
+inline constexpr std::string_view checkpoint_magic = "furniture_fem checkpoint 1";
+
+// What a resumed run must share with the run that wrote the checkpoint: the scene and every run
+// option that changes a result or a file (not the threads, the progress bar or the checkpoint period).
+inline nlohmann::json checkpoint_fingerprint(const SceneSpec& spec, const RunOptions& opt) {
+  return {{"scene", to_json(spec)},
+          {"duration_s", opt.duration.value_or(spec.duration)},
+          {"output_interval_s", opt.output_interval},
+          {"figures", opt.figures.value_or(spec.outputs.figures)},
+          {"energy_creation_limit", opt.energy_creation_limit},
+          {"energy_loss_warning", opt.energy_loss_warning},
+          {"energy_tolerance", opt.energy_tolerance},
+          {"vtu",
+           {{"binary", opt.vtu.binary},
+            {"float32_fields", opt.vtu.float32_fields},
+            {"float32_points", opt.vtu.float32_points},
+            {"compression_level", opt.vtu.compression_level}}}};
+}
+
+// The runner's own numbers that outlive a step.
+struct RunnerState {
+  static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
+  EnergyLedger row_energy, trusted;  // at the last history row; of the last row that passed the energy check
+  double max_energy_imbalance = 0;   // RunSummary::max_energy_imbalance so far
+  double wall_seconds = 0;           // spent before this part of the run
+};
+
+namespace detail {
+
+inline std::string checkpoint_path(const std::string& out_dir) { return out_dir + "/" + checkpoint_file; }
+
+// The first setting in which two fingerprints differ, as "key: checkpoint <a>, this run <b>".
+inline std::string first_difference(const nlohmann::json& saved, const nlohmann::json& now) {
+  const nlohmann::json patch = nlohmann::json::diff(saved, now);
+  if (patch.empty()) return {};
+  const std::string path = patch.front().at("path").get<std::string>();
+  const nlohmann::json::json_pointer p(path);
+  const auto shown = [&](const nlohmann::json& j) {
+    if (!j.contains(p)) return std::string("(none)");
+    std::string s = j.at(p).dump();
+    return s.size() > 80 ? s.substr(0, 77) + "..." : s;
+  };
+  std::string key = path.substr(1);
+  std::replace(key.begin(), key.end(), '/', '.');
+  return key + ": the checkpoint's run had " + shown(saved) + ", this run has " + shown(now);
+}
+
+}  // namespace detail
+
+// Writes the checkpoint of a run between two steps.
+inline void write_checkpoint(const std::string& out_dir, const nlohmann::json& fingerprint, const RunnerState& state,
+                             const SteppedSimulation& sim, const std::vector<RunObserver*>& observers) {
+  StateWriter w;
+  w(std::string(checkpoint_magic), fingerprint.dump(), state);
+  sim.save_state(w);
+  w(observers.size());
+  for (RunObserver* o : observers) o->save(w);
+  detail::vtk::write_atomically(detail::checkpoint_path(out_dir), w.bytes(), "checkpoint");
+}
+
+// Refuses, naming the folder, one that holds no run to go on with.
+inline void check_resumable_folder(const std::string& out_dir) {
+  const auto refuse = [&](const std::string& why) {
+    throw InputError(out_dir, 0, "--resume", why);
+  };
+  std::error_code ec;
+  if (!std::filesystem::is_directory(out_dir, ec)) refuse("no such results folder");
+  const nlohmann::json record = detail::read_run_record(out_dir);
+  const std::string status = record.is_object() ? record.value("status", "") : "";
+  if (status == "done") refuse("the run there completed (run.json: \"done\"); there is nothing to resume");
+  if (!std::filesystem::exists(detail::checkpoint_path(out_dir), ec))
+    refuse("holds no checkpoint (" + std::string(checkpoint_file) +
+           "): the run was not stopped by a signal and wrote none (RunOptions::checkpoint_every, "
+           "--checkpoint-every S), or it ended (completed, diverged or failed)");
+}
+
+// Reads a checkpoint into a run built from the same scene and options: the runner's state is
+// returned, the simulation's and the observers' are loaded (the observers reopen their files).
+inline RunnerState resume_from_checkpoint(const std::string& out_dir, const nlohmann::json& fingerprint,
+                                          SteppedSimulation& sim, const std::vector<RunObserver*>& observers,
+                                          const RunView& run) {
+  const std::string path = detail::checkpoint_path(out_dir);
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw InputError(path, 0, "--resume", "cannot open the checkpoint");
+  const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  StateReader r(bytes, path);
+  std::string magic, saved;
+  r(magic);
+  if (magic != checkpoint_magic)
+    throw InputError(path, 0, "checkpoint", "not a checkpoint of this version of furniture_fem");
+  r(saved);
+  nlohmann::json saved_fingerprint;
+  try {
+    saved_fingerprint = nlohmann::json::parse(saved);
+  } catch (const nlohmann::json::exception&) {
+    throw InputError(path, 0, "checkpoint", "its settings do not parse: the file is damaged");
+  }
+  if (const std::string diff = detail::first_difference(saved_fingerprint, fingerprint); !diff.empty())
+    throw InputError(path, 0, "--resume",
+                     "the run is not the one that wrote the checkpoint (" + diff +
+                         "); resume with the same scene file and options");
+  RunnerState state;
+  r(state);
+  sim.load_state(r);
+  std::size_t count = 0;
+  r(count);
+  r.expect(count, observers.size(), "observers");
+  for (RunObserver* o : observers) o->resume(run, r);
+  r.finish();
+  return state;
+}
+
+}  // namespace furniture_fem
