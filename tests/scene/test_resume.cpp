@@ -1,0 +1,202 @@
+// Checkpoint and resume (RunOptions::checkpoint_every, resume; docs/io/output.md, "Checkpoints"): a run
+// stopped at a step, or killed after its last checkpoint, and resumed writes the files of the run that
+// was never stopped, byte for byte (the histories, the VTU frames, the final states, the figures; of
+// summary.json everything but the wall times). A resume that cannot be right is refused, naming why.
+// No test reads ../shared: the motions are the built-in synthetic ones.
+#include <catch2/catch.hpp>
+
+#include <furniture_fem/scene/scene_runner.hpp>
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+using namespace furniture_fem;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string fresh_dir(const std::string& name) {
+  const fs::path p = fs::path(FFEM_TEST_TMP) / "resume" / name;
+  fs::remove_all(p);
+  fs::create_directories(p.parent_path());
+  return p.string();
+}
+
+std::string slurp(const fs::path& path) {
+  std::ifstream f(path, std::ios::binary);
+  REQUIRE(f.good());
+  return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+}
+
+// The paper's configuration 3 (the default main job's room) under the synthetic 3-D motion: stacked
+// rigid cabinets (a rigid group), flexible items, item-item pairs. `variant` 1: every item full, the
+// stick_slip law (a friction history), iterated to equilibrium.
+SceneSpec room(int variant) {
+  SceneSpec spec = configuration(3, "");
+  spec.ground_motion = GroundMotionSpec{};
+  spec.ground_motion.source = MotionSource::synthetic;
+  spec.ground_motion.pga = 8.0;
+  spec.ground_motion.dimensions = MotionDimensions::three_d;
+  spec.duration = 0.4;
+  spec.outputs.vtu_every = 50;
+  if (variant == 1) {
+    for (auto& it : spec.items) it.fidelity = Fidelity::full;
+    spec.contact.law = law_kind<StickSlipSceneLaw>;
+    spec.integrator.iterate_to_equilibrium = true;
+    spec.duration = 0.15;
+  }
+  return spec;
+}
+
+// Sets the stop flag after step `at` (-1: never), as Ctrl-C would between two steps; and when `keep`
+// is set, copies the checkpoint of step keep_at aside (what a kill leaves when it comes later).
+class StopAfter : public RunObserver {
+ public:
+  StopAfter(std::atomic<bool>& flag, long at, long keep_at = -1) : flag_(flag), at_(at), keep_at_(keep_at) {}
+  void after_step(const RunView& run, const StepInfo&) override {
+    // The checkpoint of step keep_at is on disk when step keep_at + 1 is observed.
+    if (run.sim.steps() == keep_at_ + 1) fs::copy_file(run.out_dir + "/checkpoint.bin", run.out_dir + "/kept.bin");
+    if (run.sim.steps() == at_) flag_ = true;
+  }
+
+ private:
+  std::atomic<bool>& flag_;
+  long at_, keep_at_;
+};
+
+RunOptions options(const std::string& out, std::atomic<bool>& stop) {
+  RunOptions o;
+  o.out_dir = out;
+  o.progress = false;
+  o.stop = &stop;
+  return o;
+}
+
+// Every file of the uninterrupted run's folder, the same in the resumed one (summary.json without its
+// wall times; run.json records when each part ran).
+void require_same_results(const std::string& whole, const std::string& resumed) {
+  int files = 0;
+  for (const auto& e : fs::recursive_directory_iterator(whole)) {
+    if (!e.is_regular_file()) continue;
+    const fs::path rel = fs::relative(e.path(), whole);
+    INFO(rel.string());
+    if (rel == "run.json") continue;
+    REQUIRE(fs::exists(fs::path(resumed) / rel));
+    if (rel == "summary.json") {
+      auto a = nlohmann::json::parse(slurp(e.path())), b = nlohmann::json::parse(slurp(fs::path(resumed) / rel));
+      for (auto* j : {&a, &b}) j->erase("wall_seconds"), j->erase("step_time_s");
+      REQUIRE(a == b);
+    } else {
+      REQUIRE(slurp(e.path()) == slurp(fs::path(resumed) / rel));
+    }
+    ++files;
+  }
+  CHECK(files >= 10);
+  CHECK_FALSE(fs::exists(fs::path(resumed) / "checkpoint.bin"));  // a completed run removes it
+}
+
+}  // namespace
+
+TEST_CASE("a run stopped at a step and resumed writes the uninterrupted run's files", "[runner][resume][slow]") {
+  for (const auto& [variant, stop_at] : std::vector<std::pair<int, long>>{{0, 1}, {0, 187}, {1, 113}}) {
+    INFO("variant " << variant << ", stopped after step " << stop_at);
+    const SceneSpec spec = room(variant);
+    std::atomic<bool> never{false}, stop{false};
+    const std::string whole = fresh_dir("whole_" + std::to_string(variant));
+    StopAfter none(never, -1);
+    REQUIRE(run_scene(spec, options(whole, never), {&none}).status == "completed");
+
+    const std::string part = fresh_dir("part_" + std::to_string(variant) + "_" + std::to_string(stop_at));
+    StopAfter stopper(stop, stop_at);
+    const RunSummary first = run_scene(spec, options(part, stop), {&stopper});
+    REQUIRE(first.status == "stopped");
+    REQUIRE(first.steps == stop_at);
+    REQUIRE(fs::exists(part + "/checkpoint.bin"));
+    CHECK(nlohmann::json::parse(slurp(part + "/run.json"))["status"] == "interrupted");
+
+    RunOptions again = options(part, never);
+    again.resume = true;
+    const RunSummary rest = run_scene(spec, again, {&none});
+    REQUIRE(rest.status == "completed");
+    CHECK(nlohmann::json::parse(slurp(part + "/run.json"))["resumed_from_t_s"].get<double>() ==
+          Approx(stop_at * spec.dt));
+    require_same_results(whole, part);
+  }
+}
+
+TEST_CASE("a run killed after its last checkpoint resumes from it, cutting back what it wrote since",
+          "[runner][resume][slow]") {
+  // Checkpoints at every step; the one of step 150 is kept, the run goes on to step 200 (rows, frames
+  // and figures written after step 150), then that checkpoint is put back, as a kill at step 200 would
+  // leave the last one of a run checkpointing every few minutes.
+  const SceneSpec spec = room(0);
+  std::atomic<bool> never{false}, stop{false};
+  const std::string whole = fresh_dir("killed_whole");
+  StopAfter none(never, -1);
+  run_scene(spec, options(whole, never), {&none});
+
+  const std::string part = fresh_dir("killed_part");
+  RunOptions first = options(part, stop);
+  first.checkpoint_every = 1e-9;
+  StopAfter stopper(stop, 200, 150);
+  REQUIRE(run_scene(spec, first, {&stopper}).status == "stopped");
+  fs::rename(part + "/kept.bin", part + "/checkpoint.bin");
+
+  RunOptions again = options(part, never);
+  again.resume = true;
+  REQUIRE(run_scene(spec, again, {&none}).status == "completed");
+  CHECK(nlohmann::json::parse(slurp(part + "/run.json"))["resumed_from_t_s"].get<double>() == Approx(0.15));
+  require_same_results(whole, part);
+}
+
+TEST_CASE("a resume that cannot give the uninterrupted run is refused, naming why", "[runner][resume][input]") {
+  SceneSpec spec = room(0);
+  spec.duration = 0.02;
+  std::atomic<bool> never{false}, stop{false};
+  const std::string dir = fresh_dir("refused");
+  StopAfter stopper(stop, 5);
+  REQUIRE(run_scene(spec, options(dir, stop), {&stopper}).status == "stopped");
+  StopAfter none(never, -1);
+  RunOptions again = options(dir, never);
+  again.resume = true;
+
+  SECTION("another scene") {
+    SceneSpec other = spec;
+    other.dt = 5e-4;
+    REQUIRE_THROWS_WITH(run_scene(other, again, {&none}),
+                        Catch::Contains("checkpoint.bin") && Catch::Contains("scene.dt") &&
+                            Catch::Contains("the checkpoint's run had 0.001") && Catch::Contains("same scene file"));
+  }
+  SECTION("another run length") {
+    again.duration = 0.03;
+    REQUIRE_THROWS_WITH(run_scene(spec, again, {&none}), Catch::Contains("duration_s"));
+  }
+  SECTION("other observers") {
+    REQUIRE_THROWS_WITH(run_scene(spec, again), Catch::Contains("observers") && Catch::Contains("checkpoint.bin"));
+  }
+  SECTION("a damaged checkpoint") {
+    const std::string bytes = slurp(dir + "/checkpoint.bin");
+    std::ofstream(dir + "/checkpoint.bin", std::ios::binary | std::ios::trunc) << bytes.substr(0, bytes.size() - 100);
+    REQUIRE_THROWS_WITH(run_scene(spec, again, {&none}), Catch::Contains("checkpoint.bin") && Catch::Contains("truncated"));
+  }
+  SECTION("a results file shortened since") {
+    fs::resize_file(dir + "/energy.csv", 10);
+    REQUIRE_THROWS_WITH(run_scene(spec, again, {&none}),
+                        Catch::Contains("energy.csv") && Catch::Contains("cannot go on from the checkpoint"));
+  }
+  SECTION("a completed run") {
+    REQUIRE(run_scene(spec, again, {&none}).status == "completed");
+    REQUIRE_THROWS_WITH(run_scene(spec, again, {&none}), Catch::Contains("completed") && Catch::Contains("--resume"));
+  }
+  SECTION("a folder with no checkpoint") {
+    const std::string empty = fresh_dir("no_checkpoint");
+    fs::create_directories(empty);
+    RunOptions none_there = options(empty, never);
+    none_there.resume = true;
+    REQUIRE_THROWS_WITH(run_scene(spec, none_there, {&none}), Catch::Contains("no checkpoint"));
+  }
+}
