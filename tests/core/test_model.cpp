@@ -73,6 +73,15 @@ TEST_CASE("bad input throws ModelError naming the culprit and the value", "[mode
     const std::string msg = model_error_of([&] { m.add_member("left post", a, c, sec, mat); });
     CHECK_THAT(msg, Contains("member 'left post'") && Contains("zero length") && Contains("(0 m)"));
   }
+  SECTION("a target length giving more elements than an integer holds") {
+    // lround of 1e300 is undefined: it gave one element, silently (issue 13).
+    const int a = m.add_node({0, 0, 0}, b), c = m.add_node({1, 0, 0}, b);
+    MemberOptions tiny;
+    tiny.elements = 0;
+    tiny.target_length = 1e-300;
+    const std::string msg = model_error_of([&] { m.add_member("left post", a, c, sec, mat, tiny); });
+    CHECK_THAT(msg, Contains("member 'left post'") && Contains("target_length 1e-300 m") && Contains("at most 1e6"));
+  }
   SECTION("duplicate element") {
     const int a = m.add_node({0, 0, 0}, b), c = m.add_node({1, 0, 0}, b);
     MemberOptions one;

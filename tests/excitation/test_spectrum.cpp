@@ -120,3 +120,14 @@ TEST_CASE("log_periods: geometric from t_min to t_max, both included", "[excitat
   for (std::size_t i = 1; i < p.size(); ++i) CHECK(p[i] / p[i - 1] == Approx(std::pow(250.0, 0.1)).epsilon(1e-12));
   CHECK_THROWS_AS(furniture_fem::log_periods(0.0, 1.0, 5), furniture_fem::InputError);
 }
+
+TEST_CASE("spectrum: a period too short or too long for the record's dt is refused, naming it", "[excitation][spectrum][input]") {
+  // Substeps per sample dt / (T / 100) and free-vibration steps T / h became integers unchecked: 1e-300
+  // s gave one substep, silently (undefined behaviour), 1e300 s ran for ever (issue 13).
+  const auto rec = make_record(0.01, 100, [](double t) { return std::sin(10 * t); });
+  using Catch::Matchers::Contains;
+  REQUIRE_THROWS_WITH(furniture_fem::response_spectrum(rec, {1e-300}),
+                      Contains("period 1e-300 s is too short") && Contains("dt 0.01 s"));
+  REQUIRE_THROWS_WITH(furniture_fem::response_spectrum(rec, {1e300}), Contains("period 1e+300 s is too long"));
+  CHECK_NOTHROW(furniture_fem::response_spectrum(rec, {1e-3, 1e3}));
+}

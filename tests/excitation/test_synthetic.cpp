@@ -137,3 +137,20 @@ TEST_CASE("default_table_motion: 3-D, 10 s at dt 0.01, PGA X 8, Y 6, Z 3.3 m/s^2
   CHECK(m.scaled(0.5).at(3.0).isApprox(0.5 * m.at(3.0)));
   CHECK(m.t_end() == Approx(10.0));
 }
+
+TEST_CASE("synthetic: a duration or warm-up of more than 1e9 samples is refused before anything is allocated",
+          "[excitation][synthetic][input]") {
+  // duration / dt went through llround to size_t unchecked: 1e300 s asked for an impossible vector
+  // (issue 13). The messages name the option and its value.
+  using Catch::Matchers::Contains;
+  furniture_fem::SyntheticOptions o;
+  o.duration = 1e300;
+  REQUIRE_THROWS_WITH(furniture_fem::synthetic_motion(o), Contains("synthetic_motion: duration 1e+300 s") &&
+                                                               Contains("at most 1e9"));
+  furniture_fem::SyntheticOptions slow;
+  slow.zeta_g = 1e-300;
+  REQUIRE_THROWS_WITH(furniture_fem::synthetic_motion(slow), Contains("warm-up") && Contains("zeta_g"));
+  furniture_fem::PulseOptions p;
+  p.duration = 1e300;
+  REQUIRE_THROWS_WITH(furniture_fem::near_fault_pulse(1.0, 1.0, p), Contains("near_fault_pulse: duration 1e+300 s"));
+}

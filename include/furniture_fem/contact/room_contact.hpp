@@ -194,38 +194,23 @@ class RoomContact {
   BodyPlaneContacts body_plane_contacts(const ContactView& view, int body) const {
     BodyPlaneContacts out;
     if (!implicit || !bodies_[body].implicit) return out;
-    const auto& sg = support_[body];
-    for (size_t p = 0; p < planes_.size(); ++p) {
-      const detail::SupportFace* face = sg.faces.empty() ? nullptr : sg.face_towards(view.x, planes_[p].normal);
-      for (int n : view.model.body(body).nodes) {
-        if (!plane_node_[n]) continue;
-        const bool on_face = face && std::find(face->vertices.begin(), face->vertices.end(), n) != face->vertices.end();
-        ContactState st = node_state_[n * planes_.size() + p];
-        const ContactForce cf = node_plane_force(view, n, p, on_face ? face->share : 1.0, st);
-        out.status.push_back(status_of(cf));
-        if (!cf.in_contact) continue;
+    any_body_plane_force(view, body, [&](int n, std::size_t, const ContactForce& cf) {
+      out.status.push_back(status_of(cf));
+      if (cf.in_contact) {
         out.tangents.push_back({n, cf.K, cf.C, view.x[n], Vec3(view.v.template segment<3>(6 * n))});
         out.forces.push_back(cf.on_a);
       }
-    }
+      return false;
+    });
     return out;
   }
   // Whether any of the body's (node, plane) statuses at the view's state differs from the last
   // add_forces' (no allocation: called for every rigid body at every step).
   bool body_plane_status_changed(const ContactView& view, int body) const {
     if (!implicit || !bodies_[body].implicit || plane_status_.empty()) return false;
-    const auto& sg = support_[body];
-    for (size_t p = 0; p < planes_.size(); ++p) {
-      const detail::SupportFace* face = sg.faces.empty() ? nullptr : sg.face_towards(view.x, planes_[p].normal);
-      for (int n : view.model.body(body).nodes) {
-        if (!plane_node_[n]) continue;
-        const bool on_face = face && std::find(face->vertices.begin(), face->vertices.end(), n) != face->vertices.end();
-        ContactState st = node_state_[n * planes_.size() + p];
-        if (status_of(node_plane_force(view, n, p, on_face ? face->share : 1.0, st)) != plane_status_[n * planes_.size() + p])
-          return true;
-      }
-    }
-    return false;
+    return any_body_plane_force(view, body, [&](int n, std::size_t p, const ContactForce& cf) {
+      return status_of(cf) != plane_status_[n * planes_.size() + p];
+    });
   }
   std::vector<char> last_status(const Model& model, int body) const {
     std::vector<char> status;
@@ -408,6 +393,23 @@ class RoomContact {
         return;
       }
     pair_forces_.push_back({a, b, f});
+  }
+
+  // f(node, plane, force) for each of a body's (node, plane) contacts, evaluated at the view's state
+  // from the committed history, plane by plane and node by node; true as soon as f returns true.
+  template <class F>
+  bool any_body_plane_force(const ContactView& view, int body, F&& f) const {
+    const auto& sg = support_[body];
+    for (size_t p = 0; p < planes_.size(); ++p) {
+      const detail::SupportFace* face = sg.faces.empty() ? nullptr : sg.face_towards(view.x, planes_[p].normal);
+      for (int n : view.model.body(body).nodes) {
+        if (!plane_node_[n]) continue;
+        const bool on_face = face && std::find(face->vertices.begin(), face->vertices.end(), n) != face->vertices.end();
+        ContactState st = node_state_[n * planes_.size() + p];
+        if (f(n, p, node_plane_force(view, n, p, on_face ? face->share : 1.0, st))) return true;
+      }
+    }
+    return false;
   }
 
   void element_contacts(const ContactView& view, Eigen::VectorXd& f) {

@@ -15,6 +15,12 @@
 
 namespace furniture_fem {
 
+// Whether x, a count of steps, samples or elements computed in double, may be converted to an integer:
+// at least 0 and at most `max` (false for NaN and infinities). Converting a double outside the
+// integer's range is undefined behaviour (3 / (f dt) = 5e59 went to size_t; issue 13), so every such
+// conversion of an input-derived value is checked first and refused with a message naming the input.
+inline bool count_fits(double x, double max) { return x >= 0 && x <= max; }
+
 class Error : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;

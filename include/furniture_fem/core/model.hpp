@@ -208,6 +208,7 @@ class Model {
     materials_.push_back(std::move(m));
     return static_cast<int>(materials_.size()) - 1;
   }
+  static constexpr double max_member_elements = 1e6;
   int add_node(const Vec3& X, int body) {
     check_body(body, "add_node");
     if (!detail::finite(X))
@@ -263,7 +264,11 @@ class Model {
     if (n <= 0) {
       if (!(opts.target_length > 0))
         throw ModelError(who + ": target_length must be positive (got " + detail::fmt(opts.target_length) + ")");
-      n = std::max(1, static_cast<int>(std::lround(length / opts.target_length)));
+      const double count = length / opts.target_length;
+      if (!count_fits(count, max_member_elements))
+        throw ModelError(who + ": target_length " + detail::fmt(opts.target_length) + " m gives " + detail::fmt(count) +
+                         " elements over " + detail::fmt(length) + " m (at most 1e6 per member)");
+      n = std::max(1, static_cast<int>(std::lround(count)));
     }
     if (opts.pairs && n % 2 != 0) {
       if (opts.elements > 0)

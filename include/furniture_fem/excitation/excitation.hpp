@@ -836,8 +836,16 @@ struct Spectrum {
     const double T = periods[p];
     if (!(T > 0) || !std::isfinite(T)) throw InputError("response_spectrum: periods must be positive");
     const double w = 2.0 * detail::gm::kPi / T;
-    const int sub = std::max(1, static_cast<int>(std::ceil(rec.dt / (T / 100.0) - 1e-9)));
+    // Substeps per sample and free-vibration steps, checked before they become integers.
+    const double subs = rec.dt / (T / 100.0) - 1e-9;
+    if (!count_fits(subs, 1e6))
+      throw InputError("response_spectrum: period " + detail::gm::num(T) + " s is too short for the record's dt " +
+                       detail::gm::num(rec.dt) + " s (" + detail::gm::num(subs) + " substeps per sample; at most 1e6)");
+    const int sub = std::max(1, static_cast<int>(std::ceil(subs)));
     const double h = rec.dt / sub;
+    if (!count_fits(T / h, 1e9))
+      throw InputError("response_spectrum: period " + detail::gm::num(T) + " s is too long for the record's dt " +
+                       detail::gm::num(rec.dt) + " s (" + detail::gm::num(T / h) + " steps of free vibration; at most 1e9)");
     const detail::gm::SdofStep step(w, zeta, h);
     double u = 0, v = 0, umax = 0, vmax = 0, amax = 0;  // starts at rest
     auto track = [&] {
@@ -939,12 +947,19 @@ struct SyntheticOptions {
   }
   if (!(wg * o.dt < kPi)) throw InputError("synthetic_motion: dt too coarse for the ground frequency");
 
+  if (!count_fits(o.duration / o.dt, 1e9))
+    throw InputError("synthetic_motion: duration " + detail::gm::num(o.duration) + " s is " + detail::gm::num(o.duration / o.dt) +
+                     " samples of dt " + detail::gm::num(o.dt) + " s (at most 1e9)");
   const auto n = static_cast<std::size_t>(std::llround(o.duration / o.dt)) + 1;
   const double T = o.dt * double(n - 1);
   // Run the filters through a warm-up of 5 time constants so the noise is stationary when the
   // envelope starts.
   const double wf = o.omega_f_ratio > 0 ? o.omega_f_ratio * wg : 0.0;
   const double settle = std::max({1.0, 5.0 / (o.zeta_g * wg), wf > 0 ? 5.0 / (o.zeta_f * wf) : 0.0});
+  if (!count_fits(settle / o.dt, 1e9))
+    throw InputError("synthetic_motion: the filters' warm-up of " + detail::gm::num(settle) + " s is " +
+                     detail::gm::num(settle / o.dt) + " samples of dt " + detail::gm::num(o.dt) +
+                     " s (at most 1e9): zeta_g or the ground frequency is too small");
   const auto warm = static_cast<std::size_t>(std::ceil(settle / o.dt));
   detail::gm::NormalSource noise(o.seed);
   const detail::gm::SdofStep step(wg, o.zeta_g, o.dt);
@@ -1023,6 +1038,9 @@ struct PulseOptions {
   const double fp = 1.0 / Tp, half = 0.5 * o.gamma * Tp;
   const double tc = o.t_peak > 0 ? o.t_peak : half;
   const double dur = o.duration > 0 ? o.duration : tc + half + 1.0;
+  if (!count_fits(dur / o.dt, 1e9))
+    throw InputError("near_fault_pulse: duration " + detail::gm::num(dur) + " s is " + detail::gm::num(dur / o.dt) +
+                     " samples of dt " + detail::gm::num(o.dt) + " s (at most 1e9)");
   const auto n = static_cast<std::size_t>(std::llround(dur / o.dt)) + 1;
   Record r;
   r.name = "Mavroeidis-Papageorgiou pulse Tp " + detail::gm::num(Tp) + " s";
