@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -52,20 +53,17 @@ SceneSpec room(int variant) {
   return spec;
 }
 
-// Sets the stop flag after step `at` (-1: never), as Ctrl-C would between two steps; and when `keep`
-// is set, copies the checkpoint of step keep_at aside (what a kill leaves when it comes later).
+// Sets the stop flag after step `at` (-1: never), as Ctrl-C would between two steps.
 class StopAfter : public RunObserver {
  public:
-  StopAfter(std::atomic<bool>& flag, long at, long keep_at = -1) : flag_(flag), at_(at), keep_at_(keep_at) {}
+  StopAfter(std::atomic<bool>& flag, long at) : flag_(flag), at_(at) {}
   void after_step(const RunView& run, const StepInfo&) override {
-    // The checkpoint of step keep_at is on disk when step keep_at + 1 is observed.
-    if (run.sim.steps() == keep_at_ + 1) fs::copy_file(run.out_dir + "/checkpoint.bin", run.out_dir + "/kept.bin");
     if (run.sim.steps() == at_) flag_ = true;
   }
 
  private:
   std::atomic<bool>& flag_;
-  long at_, keep_at_;
+  long at_;
 };
 
 RunOptions options(const std::string& out, std::atomic<bool>& stop) {
@@ -74,6 +72,17 @@ RunOptions options(const std::string& out, std::atomic<bool>& stop) {
   o.progress = false;
   o.stop = &stop;
   return o;
+}
+
+// The uninterrupted run of a variant, run once per test program.
+const std::string& whole_run(int variant) {
+  static std::map<int, std::string> done;
+  if (const auto it = done.find(variant); it != done.end()) return it->second;
+  std::atomic<bool> never{false};
+  const std::string dir = fresh_dir("whole_" + std::to_string(variant));
+  StopAfter none(never, -1);
+  REQUIRE(run_scene(room(variant), options(dir, never), {&none}).status == "completed");
+  return done[variant] = dir;
 }
 
 // Every file of the uninterrupted run's folder, the same in the resumed one (summary.json without its
@@ -106,9 +115,8 @@ TEST_CASE("a run stopped at a step and resumed writes the uninterrupted run's fi
     INFO("variant " << variant << ", stopped after step " << stop_at);
     const SceneSpec spec = room(variant);
     std::atomic<bool> never{false}, stop{false};
-    const std::string whole = fresh_dir("whole_" + std::to_string(variant));
+    const std::string& whole = whole_run(variant);
     StopAfter none(never, -1);
-    REQUIRE(run_scene(spec, options(whole, never), {&none}).status == "completed");
 
     const std::string part = fresh_dir("part_" + std::to_string(variant) + "_" + std::to_string(stop_at));
     StopAfter stopper(stop, stop_at);
@@ -130,25 +138,28 @@ TEST_CASE("a run stopped at a step and resumed writes the uninterrupted run's fi
 
 TEST_CASE("a run killed after its last checkpoint resumes from it, cutting back what it wrote since",
           "[runner][resume][slow]") {
-  // Checkpoints at every step; the one of step 150 is kept, the run goes on to step 200 (rows, frames
-  // and figures written after step 150), then that checkpoint is put back, as a kill at step 200 would
-  // leave the last one of a run checkpointing every few minutes.
+  // Stopped at step 150 (its checkpoint kept aside), resumed and stopped again at step 200 (rows and
+  // frames written after step 150), then the step-150 checkpoint put back: what a kill at step 200
+  // leaves of a run whose last periodic checkpoint was at step 150. Resumed twice in all.
   const SceneSpec spec = room(0);
   std::atomic<bool> never{false}, stop{false};
-  const std::string whole = fresh_dir("killed_whole");
+  const std::string& whole = whole_run(0);
   StopAfter none(never, -1);
-  run_scene(spec, options(whole, never), {&none});
 
   const std::string part = fresh_dir("killed_part");
-  RunOptions first = options(part, stop);
-  first.checkpoint_every = 1e-9;
-  StopAfter stopper(stop, 200, 150);
-  REQUIRE(run_scene(spec, first, {&stopper}).status == "stopped");
+  StopAfter at_150(stop, 150);
+  REQUIRE(run_scene(spec, options(part, stop), {&at_150}).status == "stopped");
+  fs::copy_file(part + "/checkpoint.bin", part + "/kept.bin");
+  stop = false;
+  RunOptions again = options(part, stop);
+  again.resume = true;
+  StopAfter at_200(stop, 200);
+  REQUIRE(run_scene(spec, again, {&at_200}).status == "stopped");
   fs::rename(part + "/kept.bin", part + "/checkpoint.bin");
 
-  RunOptions again = options(part, never);
-  again.resume = true;
-  REQUIRE(run_scene(spec, again, {&none}).status == "completed");
+  RunOptions last = options(part, never);
+  last.resume = true;
+  REQUIRE(run_scene(spec, last, {&none}).status == "completed");
   CHECK(nlohmann::json::parse(slurp(part + "/run.json"))["resumed_from_t_s"].get<double>() == Approx(0.15));
   require_same_results(whole, part);
 }

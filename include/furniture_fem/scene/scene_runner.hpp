@@ -14,5 +14,6 @@
 #include "observer.hpp"
 #include "observers.hpp"
 #include "results_folder.hpp"
+#include "run_checkpoint.hpp"
 #include "runner.hpp"
 #include "scene_simulation.hpp"
