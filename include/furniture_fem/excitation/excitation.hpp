@@ -837,7 +837,7 @@ struct Spectrum {
     if (!(T > 0) || !std::isfinite(T)) throw InputError("response_spectrum: periods must be positive");
     const double w = 2.0 * detail::gm::kPi / T;
     // Substeps per sample and free-vibration steps, checked before they become integers.
-    const double subs = rec.dt / (T / 100.0) - 1e-9;
+    const double subs = std::max(0.0, rec.dt / (T / 100.0) - 1e-9);
     if (!count_fits(subs, 1e6))
       throw InputError("response_spectrum: period " + detail::gm::num(T) + " s is too short for the record's dt " +
                        detail::gm::num(rec.dt) + " s (" + detail::gm::num(subs) + " substeps per sample; at most 1e6)");
