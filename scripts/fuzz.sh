@@ -59,10 +59,12 @@ seed fuzz_scene json
 run() {  # run <harness>: its log in build-fuzz/logs/<harness>.log
   local h=$1
   mkdir -p $B/corpus/$h
+  local dict=tests/fuzz/fuzz_scene.dict
+  case $h in fuzz_record_*) dict=tests/fuzz/fuzz_record.dict ;; fuzz_mesh) dict="" ;; esac
   # -max_len: the corpus has 100 kB scenes (deep nesting); mutating inputs that long is slow.
   set +e
   $B/tests/fuzz/$h -max_total_time="$secs" -rss_limit_mb=2048 -timeout=10 -max_len=32768 -print_final_stats=1 \
-      -artifact_prefix="$B/findings/$h-" "$B/corpus/$h" "$B/seeds/$h" > $B/logs/$h.log 2>&1
+      ${dict:+-dict=$dict} -artifact_prefix="$B/findings/$h-" "$B/corpus/$h" "$B/seeds/$h" > $B/logs/$h.log 2>&1
   echo $? > $B/logs/$h.rc
 }
 echo "fuzz: $secs s per harness, two at a time: $harnesses"
