@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # The test groups under clang's AddressSanitizer and UndefinedBehaviorSanitizer (with
 # float-cast-overflow), -O1, in build-asan (docs/fuzzing.md). Usage: scripts/sanitize_tests.sh [TEST...]
-# TEST: a ctest name (a test group such as excitation, or corpus: the malformed-input corpus through a
-# sanitized furniture_quake); default: the input-facing ones, excitation io scene corpus. "all": every
-# test (measured at well over CI's budget: see docs/fuzzing.md).
+# TEST: a ctest name (a test group such as excitation or scene, or corpus: the malformed-input corpus
+# through a sanitized furniture_quake), or "all" (every test); default: excitation io, the input-facing
+# groups that fit CI's budget (scene and corpus take about 35 min to build here: docs/fuzzing.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-tests="${*:-excitation io scene corpus}"
+tests="${*:-excitation io}"
 pkgs="cmake make clang libclang-rt-14-dev libeigen3-dev zlib1g-dev libcgal-dev libboost-dev catch2 nlohmann-json3-dev libcli11-dev"
 missing=""
 for p in $pkgs; do dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"; done
@@ -18,7 +18,7 @@ if [ -n "$missing" ]; then
 fi
 san="-fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all"
 start=$(date +%s)
-cmake -S . -B build-asan -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug \
+cmake -S . -B build-asan -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=TRUE \
       -DCMAKE_CXX_FLAGS="-O1 -fno-omit-frame-pointer $san" -DCMAKE_EXE_LINKER_FLAGS="$san" \
       -DFFEM_BUILD_BENCH=OFF -DFFEM_BUILD_FUZZ=OFF >/dev/null
 targets=""
