@@ -379,3 +379,25 @@ TEST_CASE("broken or empty mesh files throw InputError naming file and line", "[
     CHECK_THAT(std::string(e.what()), Catch::Contains("unknown mesh format"));
   }
 }
+
+TEST_CASE("mesh obstacle: a vertex farther than 1e6 m is a ModelError, not a CGAL failure (fuzzing)", "[contact][mesh]") {
+  // A triangle reaching 1e166 m has an infinite area (not zero: it was kept) and the first distance
+  // query threw a CGAL precondition failure (Sphere_3: squared_radius >= 0), which nothing caught
+  // (found by tests/fuzz/fuzz_mesh, docs/fuzzing.md).
+  TriangleMesh far;
+  far.vertices = {Vec3(0, 0, 0), Vec3(0.2, 0, 0), Vec3(0, 1e166, 0)};
+  far.triangles = {{0, 1, 2}};
+  try {
+    const MeshObstacle obstacle(far, "far.obj");
+    (void)obstacle.closest(Vec3(0.1, 0.2, 0.3));
+    FAIL("no ModelError for a vertex at 1e166 m");
+  } catch (const ModelError& e) {
+    const std::string what = e.what();
+    INFO(what);
+    CHECK(what.find("far.obj") != std::string::npos);
+    CHECK(what.find("vertex 2") != std::string::npos);
+    CHECK(what.find("1e+166") != std::string::npos);
+  }
+  far.vertices[2] = Vec3(0, 0.2, -1e6);  // on the bound: accepted
+  CHECK(MeshObstacle(far, "near.obj").num_triangles() == 1);
+}

@@ -432,3 +432,44 @@ TEST_CASE("empty file: InputError at line 1, field 'file', from every reader", "
   // A missing file.
   CHECK_THROWS_AS(furniture_fem::read_record(tmp_path("does_not_exist.AT2")), furniture_fem::InputError);
 }
+
+TEST_CASE("a sample that overflows once converted to m/s^2: InputError at its line and field (fuzzing)",
+          "[excitation][errors]") {
+  // 1e308 g is finite in the file but not in m/s^2; every reader gave an infinite sample before
+  // (found by tests/fuzz, docs/fuzzing.md).
+  const std::string at2 = write_file("overflow_g.AT2", std::string(kKobeHeader) +
+                                                           "NPTS =   3 , DT =   .020 SEC ,\n"
+                                                           "  -.1416764E-03  -.1421037E-03\n"
+                                                           "  1e308\n");
+  require_input_error([&] { (void)furniture_fem::read_peer_at2(at2); }, at2, 6, "sample 3");
+  try {
+    (void)furniture_fem::read_peer_at2(at2);
+  } catch (const furniture_fem::InputError& e) {
+    CHECK(std::string(e.what()).find("1e+308") != std::string::npos);
+  }
+  // K-NET: a scale factor whose ratio overflows, and counts whose sum (for the mean) overflows.
+  std::string knet = kKnetHeader;
+  knet.replace(knet.find("3920(gal)/6182761"), 17, "1e300(gal)/1e-300");
+  const std::string ks = write_file("overflow_scale.NS", knet + "1 2 3\n");
+  require_input_error([&] { (void)furniture_fem::read_knet(ks); }, ks, 14, "Scale Factor");
+  knet = kKnetHeader;
+  knet.replace(knet.find("3920(gal)/6182761"), 17, "3920(gal)/1");
+  const std::string kb = write_file("overflow_counts.NS", knet + "1 2 3\n1e308 1e308 -1e308\n");
+  require_input_error([&] { (void)furniture_fem::read_knet(kb, false); }, kb, 19, "sample 4");
+  // Counts whose sum overflows: the mean is still found (an infinite mean made every sample infinite).
+  const std::string kc = write_file("huge_counts.NS", std::string(kKnetHeader) + "1 2 3\n1e308 1e308 -1e308\n");
+  const auto mean_removed = furniture_fem::read_knet(kc, true);
+  for (double a : mean_removed.acc) CHECK(std::isfinite(a));
+  // JMA in g, columns in g.
+  std::string jma = kJmaHeader;
+  jma.replace(jma.find("UNIT  = gal"), 11, "UNIT  = g");
+  const std::string jp = write_file("overflow_g.csv", jma + "NS,EW,UD\n1,2,3\n4,1e308,6\n");
+  require_input_error([&] { (void)furniture_fem::read_jma_csv(jp); }, jp, 9, "EW");
+  furniture_fem::ReadOptions g;
+  g.unit = furniture_fem::Unit::g;
+  const std::string cp = write_file("overflow_g.txt", "0 1\n0.01 1e308\n0.02 3\n");
+  require_input_error([&] { (void)furniture_fem::read_columns(cp, g); }, cp, 2, "acceleration");
+  g.dt = 0.01;
+  const std::string vp = write_file("overflow_g_values.txt", "1 2\n3 1e308\n");
+  require_input_error([&] { (void)furniture_fem::read_columns(vp, g); }, vp, 2, "sample 4");
+}

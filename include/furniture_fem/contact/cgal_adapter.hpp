@@ -29,6 +29,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -482,6 +483,12 @@ inline TriangleMesh read_triangle_mesh(const std::string& path) {
 // Rigid triangle-mesh obstacle.
 
 namespace detail {
+inline std::string coordinate_text(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
 struct CgalMeshTree {
   using Kernel = CGAL::Simple_cartesian<double>;
   using Triangle = Kernel::Triangle_3;
@@ -529,6 +536,12 @@ struct SegmentMeshContact {
 // left is an error. Copies share the immutable tree.
 class MeshObstacle {
  public:
+  // Vertices must lie within this distance of the origin on each axis (m). Far beyond, CGAL's squared
+  // distances and areas overflow: a vertex at 1e166 m passed the zero-area test with an infinite
+  // area, and the first distance query threw a CGAL precondition failure (found by fuzzing,
+  // docs/fuzzing.md). Scenes bound obstacles tighter (10 km of the table's centre).
+  static constexpr double max_coordinate = 1e6;
+
   explicit MeshObstacle(TriangleMesh mesh, std::string name = "mesh") : name_(std::move(name)) {
     auto t = std::make_shared<detail::CgalMeshTree>();
     for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
@@ -537,6 +550,13 @@ class MeshObstacle {
         if (v < 0 || v >= static_cast<int>(mesh.vertices.size()))
           throw ModelError("mesh '" + name_ + "': triangle " + std::to_string(k) + " refers to vertex " +
                            std::to_string(v) + " of " + std::to_string(mesh.vertices.size()));
+      for (int v : tri)
+        if (!(mesh.vertices[v].cwiseAbs().maxCoeff() <= max_coordinate)) {
+          const Vec3& p = mesh.vertices[v];
+          throw ModelError("mesh '" + name_ + "': triangle " + std::to_string(k) + ", vertex " + std::to_string(v) +
+                           " at (" + detail::coordinate_text(p.x()) + ", " + detail::coordinate_text(p.y()) + ", " +
+                           detail::coordinate_text(p.z()) + ") lies farther than 1e6 m from the origin on an axis");
+        }
       const Vec3 &a = mesh.vertices[tri[0]], &b = mesh.vertices[tri[1]], &c = mesh.vertices[tri[2]];
       if ((b - a).cross(c - a).squaredNorm() == 0) continue;
       t->triangles.emplace_back(t->point(a), t->point(b), t->point(c));

@@ -1355,19 +1355,20 @@ class Simulation {
         ++s.refreshed;
       }
       // Take the body's rigid rotation since the factorisation out of the right-hand side (P^T r),
-      // solve with the old matrix, put it back (P y): exact for a rigidly rotated body.
+      // solve with the old matrix, put it back (P y): exact for a rigidly rotated body. (".template":
+      // the types depend on the simulation's; clang requires it, GCC did not.)
       const Mat3 P = Q * bs.Q_factor.transpose();
       for (size_t k = 0; k < bs.nodes.size(); ++k) {
         const int g = bs.nodes[k];
-        bs.r.segment<3>(6 * k) = P.transpose() * sim.r_.segment<3>(6 * g);
-        bs.r.segment<3>(6 * k + 3) = P.transpose() * sim.r_.segment<3>(6 * g + 3);
+        bs.r.template segment<3>(6 * k) = P.transpose() * sim.r_.template segment<3>(6 * g);
+        bs.r.template segment<3>(6 * k + 3) = P.transpose() * sim.r_.template segment<3>(6 * g + 3);
       }
       if (!sim.solvers_[b]->solve(bs.r, bs.dx)) s.solve_failed = true;
       if (!sim.static_ && !s.solve_failed && !contact_update(sim, b, P)) s.solve_failed = true;
       for (size_t k = 0; k < bs.nodes.size(); ++k) {
         const int g = bs.nodes[k];
-        sim.Du_.segment<3>(6 * g) += P * bs.dx.segment<3>(6 * k);
-        sim.Du_.segment<3>(6 * g + 3) += P * bs.dx.segment<3>(6 * k + 3);
+        sim.Du_.template segment<3>(6 * g) += P * bs.dx.template segment<3>(6 * k);
+        sim.Du_.template segment<3>(6 * g + 3) += P * bs.dx.template segment<3>(6 * k + 3);
       }
     }
 

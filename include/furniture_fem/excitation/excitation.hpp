@@ -225,6 +225,20 @@ inline void parse_samples(const TextFile& f, long ln, std::vector<double>& out) 
   if (r.status != LineParse::ok) fail_parse(f, ln, "sample " + std::to_string(before + r.index + 1), r);
 }
 
+// Converts the samples out[from..] of line ln to m/s^2 (times factor). A value the conversion takes
+// past the range of a double (1e308 in g) is bad input: it gave an infinite sample before, found by
+// fuzzing (docs/fuzzing.md).
+inline void scale_samples(const TextFile& f, long ln, std::vector<double>& out, std::size_t from, double factor,
+                          const std::string& field = "sample") {
+  for (std::size_t k = from; k < out.size(); ++k) {
+    const double raw = out[k];
+    out[k] *= factor;
+    if (!std::isfinite(out[k]))
+      f.fail(ln, field == "sample" ? "sample " + std::to_string(k + 1) : field,
+             "value " + num(raw) + " is out of range once converted to m/s^2 (x " + num(factor) + ")");
+  }
+}
+
 inline bool is_comment(const std::string& line) {
   const std::string t = trim(line);
   return !t.empty() && (t[0] == '#' || t[0] == ';');
@@ -347,14 +361,15 @@ inline void check_record(const Record& r, const char* what) {
   r.acc.reserve(std::min(static_cast<std::size_t>(npts), 8 * f.lines.size()));
   for (std::size_t i = 4; i < f.lines.size(); ++i) {
     const long ln = long(i) + 1;
+    const std::size_t before = r.acc.size();
     parse_samples(f, ln, r.acc);
     if (long(r.acc.size()) > npts)
       f.fail(ln, "NPTS", "more samples than NPTS = " + std::to_string(npts) + " (line 4)");
+    scale_samples(f, ln, r.acc, before, factor);
   }
   if (long(r.acc.size()) != npts)
     f.fail(4, "NPTS", "header says " + std::to_string(npts) + " samples but the file has " +
                           std::to_string(r.acc.size()));
-  for (double& a : r.acc) a *= factor;
   return r;
 }
 
@@ -383,7 +398,7 @@ inline void check_record(const Record& r, const char* what) {
     } else if (starts_with(line, "Scale Factor")) {
       const std::string v = line.substr(12);
       if (!match_scale(v, m1, m2) || !parse_one(m1, num_gal) || !parse_one(m2, den) ||
-          !(den != 0))
+          !(den != 0) || !std::isfinite(num_gal / den))
         f.fail(ln, "Scale Factor", "expected 'gal(gal)/counts' like 3920(gal)/6182761, found '" + excerpt(v) + "'");
     } else if (starts_with(line, "Station Code")) {
       station = trim(line.substr(12));
@@ -404,15 +419,33 @@ inline void check_record(const Record& r, const char* what) {
   r.name = station.empty() ? file_stem(path) : station + (dir.empty() ? "" : " " + dir);
   r.source = path + " (K-NET/KiK-net ASCII" + (origin.empty() ? "" : ", origin " + origin) + ")";
   r.dt = 1.0 / freq;
-  for (; i < f.lines.size(); ++i) parse_samples(f, long(i) + 1, r.acc);
+  std::vector<std::size_t> line_start;  // index of each data line's first sample, for messages
+  const std::size_t first_data = i;
+  for (; i < f.lines.size(); ++i) {
+    line_start.push_back(r.acc.size());
+    parse_samples(f, long(i) + 1, r.acc);
+  }
   if (r.acc.size() < 2) f.fail(long(f.lines.size()), "samples", "a record needs at least 2 samples after the header");
   const double to_gal = num_gal / den;
   double mean = 0;
   if (remove_mean) {
     for (double c : r.acc) mean += c;
     mean /= double(r.acc.size());
+    if (!std::isfinite(mean)) {  // the sum overflowed (two counts of 1e308): sum count / n instead
+      mean = 0;
+      for (double c : r.acc) mean += c / double(r.acc.size());
+    }
   }
-  for (double& a : r.acc) a = (a - mean) * to_gal * 0.01;
+  for (std::size_t k = 0; k < r.acc.size(); ++k) {
+    const double count = r.acc[k];
+    r.acc[k] = (count - mean) * to_gal * 0.01;
+    if (!std::isfinite(r.acc[k])) {
+      const auto at = std::upper_bound(line_start.begin(), line_start.end(), k) - line_start.begin();
+      f.fail(long(first_data) + long(at), "sample " + std::to_string(k + 1),
+             "count " + num(count) + (remove_mean ? " less the mean count " + num(mean) : std::string()) +
+                 " is out of range once converted to m/s^2 (x " + num(to_gal * 0.01) + ")");
+    }
+  }
   return r;
 }
 
@@ -525,7 +558,10 @@ inline void check_record(const Record& r, const char* what) {
     }
     if (row.size() != 3)
       f.fail(ln, "NS,EW,UD", "expected 3 values, found " + std::to_string(row.size()));
-    for (int c = 0; c < 3; ++c) out[c].acc.push_back(row[column_of[c]] * factor);
+    for (int c = 0; c < 3; ++c) {
+      out[c].acc.push_back(row[column_of[c]]);
+      scale_samples(f, ln, out[c].acc, out[c].acc.size() - 1, factor, names[c]);
+    }
   }
   if (out[0].acc.empty()) f.fail(long(f.lines.size()), "samples", "no samples after the header");
   if (out[0].acc.size() < 2) f.fail(long(f.lines.size()), "samples", "a record needs at least 2 samples after the header");
@@ -545,6 +581,7 @@ inline void check_record(const Record& r, const char* what) {
   if (layout == Layout::values && !(opt.dt > 0))
     throw InputError("read_columns: Layout::values needs ReadOptions::dt > 0");
 
+  const double factor = unit_factor(opt.unit);
   Record r;
   r.name = file_stem(path);
   r.source = path + " (columns)";
@@ -556,7 +593,9 @@ inline void check_record(const Record& r, const char* what) {
     if (is_blank(f.lines[i]) || is_comment(f.lines[i])) continue;
     last_ln = ln;
     if (layout == Layout::values) {
+      const std::size_t before = r.acc.size();
       parse_samples(f, ln, r.acc);
+      scale_samples(f, ln, r.acc, before, factor);
       continue;
     }
     pair.clear();
@@ -572,6 +611,7 @@ inline void check_record(const Record& r, const char* what) {
     times.push_back(pair[0]);
     time_lines.push_back(ln);
     r.acc.push_back(pair[1]);
+    scale_samples(f, ln, r.acc, r.acc.size() - 1, factor, "acceleration");
   }
   if (r.acc.empty()) f.fail(last_ln > 0 ? last_ln : long(f.lines.size()), "samples", "no samples");
   if (layout == Layout::values) {
@@ -597,8 +637,6 @@ inline void check_record(const Record& r, const char* what) {
     r.dt = (times.back() - times.front()) / double(times.size() - 1);
     if (const std::string why = record_dt_problem(r.dt); !why.empty()) f.fail(time_lines[1], "time", why);
   }
-  const double factor = unit_factor(opt.unit);
-  for (double& a : r.acc) a *= factor;
   return r;
 }
 

@@ -3,6 +3,7 @@
 // the parameters it takes (key, unit, range, default, meaning) and its builder. A registry maps names
 // to kinds; scene files are read against it (furniture/item_kinds.hpp holds the one in use and the
 // built-in kinds). docs/furniture/furniture.md shows how to write and register a kind.
+#include <cmath>
 #include <deque>
 #include <functional>
 #include <map>
@@ -32,7 +33,9 @@ struct ItemParameter {
   }
   // Why `value` is not accepted, or nothing when it is.
   std::optional<std::string> violation(double value) const {
-    if (integer && value != static_cast<double>(static_cast<long long>(value))) return "must be an integer";
+    // std::trunc, not a cast to an integer type: a value past its range (1.6e19 shelves) was undefined
+    // behaviour (found by fuzzing, docs/fuzzing.md); such a value is an integer, out of the range below.
+    if (integer && value != std::trunc(value)) return "must be an integer";
     if (!((lo_exclusive ? value > lo : value >= lo) && value <= hi)) return "must lie in " + range_text();
     return std::nullopt;
   }

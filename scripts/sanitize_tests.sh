@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# The test groups under clang's AddressSanitizer and UndefinedBehaviorSanitizer (with
+# float-cast-overflow), -O1, in build-asan (docs/fuzzing.md). Usage: scripts/sanitize_tests.sh [TEST...]
+# TEST: a ctest name (a test group such as excitation or scene, or corpus: the malformed-input corpus
+# through a sanitized furniture_quake), or "all" (every test); default: excitation io, the input-facing
+# groups that fit CI's budget (scene and corpus take about 35 min to build here: docs/fuzzing.md).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+tests="${*:-excitation io}"
+pkgs="cmake make clang libclang-rt-14-dev libeigen3-dev zlib1g-dev libcgal-dev libboost-dev catch2 nlohmann-json3-dev libcli11-dev"
+missing=""
+for p in $pkgs; do dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"; done
+if [ -n "$missing" ]; then
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  echo "installing:$missing"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $missing
+fi
+san="-fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all"
+start=$(date +%s)
+cmake -S . -B build-asan -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=TRUE \
+      -DCMAKE_CXX_FLAGS="-O1 -fno-omit-frame-pointer $san" -DCMAKE_EXE_LINKER_FLAGS="$san" \
+      -DFFEM_BUILD_BENCH=OFF -DFFEM_BUILD_FUZZ=OFF >/dev/null
+targets=""
+regex=""
+for t in $tests; do
+  case "$t" in
+    all) targets="all"; regex="" ; break ;;
+    corpus) targets="$targets furniture_quake" ;;
+    *) targets="$targets test_$t" ;;
+  esac
+  regex="$regex|^$t\$"
+done
+for t in $targets; do cmake --build build-asan -j 2 --target "$t"; done
+built=$(date +%s)
+echo "sanitized build: $((built - start)) s ($targets)"
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+status=0
+ctest --test-dir build-asan --output-on-failure -j 2 ${regex:+-R "${regex#|}"} || status=$?
+echo "sanitized tests: $(( $(date +%s) - built )) s, build $((built - start)) s"
+exit $status
