@@ -1064,8 +1064,8 @@ class Wireframe3D {
   }
 
   // Each label centred just above its point; when it would overlap one already placed (or the title,
-  // or the legend), or leave the image, it moves up or down by whole rows and a thin line joins it to
-  // its point.
+  // or the legend), or leave the image, it moves up (else down) by whole rows and a thin line joins it
+  // to its point.
   void draw_labels(const detail::Canvas& c, const View& v, const detail::Metrics& m, int W, int H,
                    std::vector<Rect>& taken) const {
     const double fs = 0.9 * m.fs;
@@ -1080,8 +1080,8 @@ class Wireframe3D {
       const int y_base = int(std::lround(p.y())) - m.gap - th;
       Rect best{x0, y_base, x0 + w - 1, y_base + th - 1};
       bool placed = false;
-      for (int k = 0; k < 24 && !placed; ++k) {
-        const int shift = (k % 2 == 0 ? -1 : 1) * ((k + 1) / 2) * row;  // 0, +1, -1, +2, ... rows
+      for (int k = 0; k < 25 && !placed; ++k) {
+        const int shift = (k <= 12 ? -k : k - 12) * row;  // 0, 1, ..., 12 rows up, then 1, ..., 12 down
         const Rect r{x0, y_base + shift, x0 + w - 1, y_base + shift + th - 1};
         if (r.y0 < 1 || r.y1 > H - 2) continue;
         bool free = true;
