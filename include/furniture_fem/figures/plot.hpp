@@ -1071,6 +1071,12 @@ class Wireframe3D {
     const double fs = 0.9 * m.fs;
     const int th = int(std::ceil(c.line_height(fs))), row = th + m.gap;
     auto overlaps = [](const Rect& a, const Rect& b) { return a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1; };
+    struct Placed {
+      const Label* label;
+      Eigen::Vector2d at;
+      Rect box;
+    };
+    std::vector<Placed> placed_labels;
     for (const Label& l : labels_) {
       const Eigen::Vector2d p = v.pixel(l.at);
       if (!p.allFinite() || l.text.empty()) continue;
@@ -1090,13 +1096,17 @@ class Wireframe3D {
       }
       if (best.y0 < 1) best.y1 += 1 - best.y0, best.y0 = 1;
       taken.push_back(best);
-      const double cx = 0.5 * (best.x0 + best.x1);
-      if (best.y1 + 1 < p.y() - m.gap || best.y0 > p.y() + 1)
-        c.line(p.x(), p.y(), std::clamp(p.x(), double(best.x0), double(best.x1)), best.y1 + 1 < p.y() ? best.y1 : best.y0, l.color, 1.0);
-      c.fill_circle(p.x(), p.y(), 2.5, l.color);
-      c.fill_rect(best, style_.background, 0.8);
-      c.stroke_rect(best, l.color);
-      c.text(cx, 0.5 * (best.y0 + best.y1), l.text, style_.foreground, fs, HAlign::center, VAlign::middle);
+      placed_labels.push_back({&l, p, best});
+    }
+    // Leader lines first, so that no line crosses a label's box.
+    for (const auto& [l, p, r] : placed_labels)
+      if (r.y1 + 1 < p.y() - m.gap || r.y0 > p.y() + 1)
+        c.line(p.x(), p.y(), std::clamp(p.x(), double(r.x0), double(r.x1)), r.y1 + 1 < p.y() ? r.y1 : r.y0, l->color, 1.0);
+    for (const auto& [l, p, r] : placed_labels) {
+      c.fill_circle(p.x(), p.y(), 2.5, l->color);
+      c.fill_rect(r, style_.background, 0.85);
+      c.stroke_rect(r, l->color);
+      c.text(0.5 * (r.x0 + r.x1), 0.5 * (r.y0 + r.y1), l->text, style_.foreground, fs, HAlign::center, VAlign::middle);
     }
   }
 
