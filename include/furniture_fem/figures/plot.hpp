@@ -519,23 +519,9 @@ struct Series {
   double marker = 0;            // radius in px of a dot at every point; 0: none
 };
 
-namespace detail {
-// save_png, save_svg, save_pdf and render() of a figure class with paint(canvas, width, height).
-template <class Figure>
-void save_figure(const Figure& f, const char* cls, const std::string& path, FigureFormat kind, int width, int height) {
-  const std::string who = std::string(cls) + (kind == FigureFormat::png ? "::save_png" : kind == FigureFormat::svg ? "::save_svg" : "::save_pdf");
-  write_figure(who.c_str(), path, kind, width, height, f.style().antialias, f.style().background,
-               [&](const Canvas& c) { f.paint(c, width, height); });
-}
-template <class Figure>
-Image render_figure(const Figure& f, int width, int height) {
-  return render_image(width, height, f.style().antialias, f.style().background,
-                      [&](const Canvas& c) { f.paint(c, width, height); });
-}
-}  // namespace detail
-
-class LinePlot {
+class LinePlot : public detail::FigureFiles<LinePlot, 1000, 600> {
  public:
+  static constexpr const char* figure_name = "LinePlot";
   explicit LinePlot(std::string title = "") : title_(std::move(title)), panels_(1) {}
 
   LinePlot& title(std::string t) { return title_ = std::move(t), *this; }
@@ -583,18 +569,8 @@ class LinePlot {
 
   PlotLayout layout(int width = 1000, int height = 600) const { return detail::build_layout(width, height, style_, input()); }
 
-  Image render(int width = 1000, int height = 600) const { return detail::render_figure(*this, width, height); }
-  // Write the figure; OutputError naming the file when it cannot be written.
-  void save_png(const std::string& path, int width = 1000, int height = 600) const {
-    detail::save_figure(*this, "LinePlot", path, FigureFormat::png, width, height);
-  }
-  void save_svg(const std::string& path, int width = 1000, int height = 600) const {
-    detail::save_figure(*this, "LinePlot", path, FigureFormat::svg, width, height);
-  }
-  void save_pdf(const std::string& path, int width = 1000, int height = 600) const {
-    detail::save_figure(*this, "LinePlot", path, FigureFormat::pdf, width, height);
-  }
 
+  // Draws the figure on a cairo canvas (what render() and the save_ functions call).
   void paint(const detail::Canvas& c, int width, int height) const {
     const detail::LayoutInput in = input();
     const PlotLayout L = detail::build_layout(width, height, style_, in);
@@ -691,8 +667,9 @@ struct ScatterPoint {
   std::optional<RGB> color;  // overrides the group colour
 };
 
-class ScatterPlot {
+class ScatterPlot : public detail::FigureFiles<ScatterPlot, 1000, 600> {
  public:
+  static constexpr const char* figure_name = "ScatterPlot";
   explicit ScatterPlot(std::string title = "") : title_(std::move(title)) {}
 
   ScatterPlot& title(std::string t) { return title_ = std::move(t), *this; }
@@ -742,17 +719,8 @@ class ScatterPlot {
     return detail::build_layout(width, height, style_, input(width, height));
   }
 
-  Image render(int width = 1000, int height = 600) const { return detail::render_figure(*this, width, height); }
-  void save_png(const std::string& path, int width = 1000, int height = 600) const {
-    detail::save_figure(*this, "ScatterPlot", path, FigureFormat::png, width, height);
-  }
-  void save_svg(const std::string& path, int width = 1000, int height = 600) const {
-    detail::save_figure(*this, "ScatterPlot", path, FigureFormat::svg, width, height);
-  }
-  void save_pdf(const std::string& path, int width = 1000, int height = 600) const {
-    detail::save_figure(*this, "ScatterPlot", path, FigureFormat::pdf, width, height);
-  }
 
+  // Draws the figure on a cairo canvas (what render() and the save_ functions call).
   void paint(const detail::Canvas& c, int width, int height) const {
     const detail::LayoutInput in = input(width, height);
     const PlotLayout L = detail::build_layout(width, height, style_, in);
@@ -818,8 +786,9 @@ using Segment3 = std::array<Eigen::Vector3d, 2>;
 // around z (measured from +x towards +y) and `elevation` degrees above the horizontal; the view is
 // scaled to fill the image. Segments are drawn far to near so nearer members overlap farther ones;
 // reference segments (thin, e.g. the initial positions) are drawn under all of them, and labels over.
-class Wireframe3D {
+class Wireframe3D : public detail::FigureFiles<Wireframe3D, 1000, 800> {
  public:
+  static constexpr const char* figure_name = "Wireframe3D";
   explicit Wireframe3D(std::string title = "") : title_(std::move(title)) {}
 
   Wireframe3D& title(std::string t) { return title_ = std::move(t), *this; }
@@ -895,17 +864,8 @@ class Wireframe3D {
     return view(meas.canvas(), width, height).title;
   }
 
-  Image render(int width = 1000, int height = 800) const { return detail::render_figure(*this, width, height); }
-  void save_png(const std::string& path, int width = 1000, int height = 800) const {
-    detail::save_figure(*this, "Wireframe3D", path, FigureFormat::png, width, height);
-  }
-  void save_svg(const std::string& path, int width = 1000, int height = 800) const {
-    detail::save_figure(*this, "Wireframe3D", path, FigureFormat::svg, width, height);
-  }
-  void save_pdf(const std::string& path, int width = 1000, int height = 800) const {
-    detail::save_figure(*this, "Wireframe3D", path, FigureFormat::pdf, width, height);
-  }
 
+  // Draws the figure on a cairo canvas (what render() and the save_ functions call).
   void paint(const detail::Canvas& c, int width, int height) const {
     const View v = view(c, width, height);
     const detail::Metrics m(c, style_.font_for(width, height));

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -252,35 +253,41 @@ class Measurer {
 
 inline std::string cairo_error(cairo_status_t s) { return cairo_status_to_string(s); }
 
+// Paints the background, then runs draw(canvas) with the half-pixel shift; cairo's status after.
+template <class Draw>
+cairo_status_t paint_surface(cairo_surface_t* surface, bool antialias, RGB background, Draw&& draw) {
+  CairoPtr cr(cairo_create(surface));
+  Canvas c(cr.get(), antialias);
+  c.color(background);
+  cairo_paint(cr.get());
+  cairo_translate(cr.get(), 0.5, 0.5);
+  draw(c);
+  return cairo_status(cr.get());
+}
+
 // Runs draw(canvas) on a width x height surface of the given kind and writes it to `path`; throws
 // OutputError naming `who` and the file when the file cannot be created or written.
 template <class Draw>
-void write_figure(const char* who, const std::string& path, FigureFormat kind, int width, int height, bool antialias,
-                  RGB background, Draw&& draw) {
+void write_figure(const std::string& who, const std::string& path, FigureFormat kind, int width, int height,
+                  bool antialias, RGB background, Draw&& draw) {
   if (width <= 0 || height <= 0)
-    throw InputError(std::string(who) + " '" + path + "': size " + std::to_string(width) + "x" + std::to_string(height));
+    throw InputError(who + " '" + path + "': size " + std::to_string(width) + "x" + std::to_string(height));
+  errno = 0;  // cairo opens the file with fopen: errno says why it could not
   SurfacePtr surface(kind == FigureFormat::png   ? cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height)
                      : kind == FigureFormat::svg ? cairo_svg_surface_create(path.c_str(), width, height)
                                                  : cairo_pdf_surface_create(path.c_str(), width, height));
-  auto fail = [&](cairo_status_t s) {
-    throw OutputError(std::string(who) + ": cannot write '" + path + "': " + cairo_error(s));
+  auto check = [&](cairo_status_t s) {
+    if (s == CAIRO_STATUS_SUCCESS) return;
+    const std::string why = errno ? std::string(" (") + std::strerror(errno) + ")" : std::string();
+    throw OutputError(who + ": cannot write '" + path + "': " + cairo_error(s) + why);
   };
-  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) fail(cairo_surface_status(surface.get()));
-  {
-    CairoPtr cr(cairo_create(surface.get()));
-    Canvas c(cr.get(), antialias);
-    c.color(background);
-    cairo_paint(cr.get());
-    cairo_translate(cr.get(), 0.5, 0.5);
-    draw(c);
-    if (cairo_status(cr.get()) != CAIRO_STATUS_SUCCESS) fail(cairo_status(cr.get()));
-  }
+  check(cairo_surface_status(surface.get()));
+  check(paint_surface(surface.get(), antialias, background, draw));
   if (kind == FigureFormat::png) {
-    const cairo_status_t s = cairo_surface_write_to_png(surface.get(), path.c_str());
-    if (s != CAIRO_STATUS_SUCCESS) fail(s);
+    check(cairo_surface_write_to_png(surface.get(), path.c_str()));
   } else {
     cairo_surface_finish(surface.get());
-    if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) fail(cairo_surface_status(surface.get()));
+    check(cairo_surface_status(surface.get()));
   }
 }
 
@@ -289,27 +296,44 @@ template <class Draw>
 Image render_image(int width, int height, bool antialias, RGB background, Draw&& draw) {
   if (width <= 0 || height <= 0) throw InputError("render: size " + std::to_string(width) + "x" + std::to_string(height));
   SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height));
-  {
-    CairoPtr cr(cairo_create(surface.get()));
-    Canvas c(cr.get(), antialias);
-    c.color(background);
-    cairo_paint(cr.get());
-    cairo_translate(cr.get(), 0.5, 0.5);
-    draw(c);
-  }
+  paint_surface(surface.get(), antialias, background, draw);
   cairo_surface_flush(surface.get());
   Image img(width, height);
   const unsigned char* data = cairo_image_surface_get_data(surface.get());
   const int stride = cairo_image_surface_get_stride(surface.get());
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
-      std::uint32_t p;
+      std::uint32_t p;  // native-endian 0x00RRGGBB
       std::memcpy(&p, data + std::size_t(y) * std::size_t(stride) + 4 * std::size_t(x), 4);
       const std::size_t i = (std::size_t(y) * std::size_t(width) + std::size_t(x)) * 3;
       img.rgb[i] = std::uint8_t(p >> 16), img.rgb[i + 1] = std::uint8_t(p >> 8), img.rgb[i + 2] = std::uint8_t(p);
     }
   return img;
 }
+
+// render() and the three save_ functions of a figure class (CRTP): Derived has paint(canvas, width,
+// height), style() and figure_name; W0 x H0 is its default size.
+template <class Derived, int W0, int H0>
+class FigureFiles {
+ public:
+  // The pixels (RGB8), without writing a file.
+  Image render(int width = W0, int height = H0) const {
+    return render_image(width, height, self().style().antialias, self().style().background,
+                        [&](const Canvas& c) { self().paint(c, width, height); });
+  }
+  // Write the figure; OutputError naming the file when it cannot be written.
+  void save_png(const std::string& path, int width = W0, int height = H0) const { save(path, FigureFormat::png, width, height); }
+  void save_svg(const std::string& path, int width = W0, int height = H0) const { save(path, FigureFormat::svg, width, height); }
+  void save_pdf(const std::string& path, int width = W0, int height = H0) const { save(path, FigureFormat::pdf, width, height); }
+  void save(const std::string& path, FigureFormat kind, int width = W0, int height = H0) const {
+    const char* call = kind == FigureFormat::png ? "::save_png" : kind == FigureFormat::svg ? "::save_svg" : "::save_pdf";
+    write_figure(std::string(Derived::figure_name) + call, path, kind, width, height, self().style().antialias,
+                 self().style().background, [&](const Canvas& c) { self().paint(c, width, height); });
+  }
+
+ private:
+  const Derived& self() const { return static_cast<const Derived&>(*this); }
+};
 
 }  // namespace detail
 }  // namespace furniture_fem
