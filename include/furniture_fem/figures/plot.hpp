@@ -343,7 +343,7 @@ inline Rect legend_rect(const Canvas& c, const std::vector<LegendItem>& items, c
   font = m.fs;
   if (labels.empty() || pos == LegendPos::none) return {};
   const int sample = int(std::lround(2.2 * m.fs));
-  auto width = [&](double f) { return int(std::ceil(2 * m.pad + sample + m.gap + max_width(c, labels, f))); };
+  auto width = [&](double f) { return int(std::ceil(3 * m.pad + sample + max_width(c, labels, f))); };
   while (width(font) > 0.6 * frame.width() && font > 0.6 * m.fs) font -= 0.5;
   const int row = int(std::ceil(c.line_height(font))) + m.gap;
   const int w = width(font), h = int(labels.size()) * row + 2 * m.gap;
@@ -442,7 +442,7 @@ inline void draw_legend(const Canvas& c, const Rect& r, double font, const std::
     const double sx = r.x0 + m.pad;
     if (it.line) c.polyline({{sx, cy}, {sx + sample, cy}}, it.color, it.width, r, it.dashed);
     if (it.marker > 0) c.fill_circle(sx + 0.5 * sample, cy, it.marker, it.color);
-    c.text(sx + sample + m.gap, cy, it.label, st.foreground, font, HAlign::left, VAlign::middle);
+    c.text(sx + sample + m.pad, cy, it.label, st.foreground, font, HAlign::left, VAlign::middle);
     ++k;
   }
 }
