@@ -815,17 +815,22 @@ class Figures : public RunObserver {
     }
     p.save_png(run.out_dir + "/input_motion.png", 1000, 900);
   }
-  // energy.png: the energy ledger's terms against time (top) and its imbalance (bottom), sampled at
-  // the history rows (the rows of energy.csv).
+  // energy.png: the energy ledger's terms against time, each as its change since the first row (the
+  // gravity potential's absolute value depends on the datum and would flatten the rest), and the
+  // imbalance below; sampled at the history rows (the rows of energy.csv).
   void draw_energy(const RunView& run) const {
     LinePlot p;
-    p.title("Energy ledger").xlabel("time (s)").panels(2);
-    p.ylabel("energy (J)", 0).ylabel("imbalance (J)", 1);
+    p.title("Energy ledger: change of each term since t = " + detail::fmt3(t_.empty() ? 0.0 : t_.front()) + " s")
+        .xlabel("time (s)")
+        .panels(2);
+    p.ylabel("change (J)", 0).ylabel("imbalance (J)", 1);
     const auto& names = detail::ledger_terms();
     for (std::size_t k = 0; k < names.size(); ++k) {
       std::string label = names[k];
       std::replace(label.begin(), label.end(), '_', ' ');
-      p.add(t_, energy_series_[k], label, 0);
+      std::vector<double> change = energy_series_[k];
+      for (double& e : change) e -= energy_series_[k].front();
+      p.add(t_, std::move(change), label, 0);
     }
     p.add(t_, energy_series_[names.size()], "imbalance", 1);
     p.save_png(run.out_dir + "/energy.png", 1000, 800);
