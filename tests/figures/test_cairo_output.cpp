@@ -207,3 +207,14 @@ TEST_CASE("Wireframe3D: reference segments under the members, labels near their 
   CHECK(t.lines == std::vector<std::string>{"Room"});
   CHECK(measured_width("Room", t.size, true) < 600);
 }
+
+TEST_CASE("cairo: UTF-8 text is drawn, invalid UTF-8 becomes '?' instead of failing the figure", "[plot][cairo]") {
+  LinePlot plot("Beschleunigung \xC3\xA4 (m/s\xC2\xB2), broken: \xFF\xC3");
+  plot.add({0, 1}, {0, 1}, "label \xE2\x82\xAC \xED\xA0\x80");
+  const std::string path = tmp("cairo_utf8.png");
+  CHECK_NOTHROW(plot.save_png(path, 500, 300));
+  CHECK(png_test::decode_file(path).width == 500);
+  CHECK(detail::utf8_or_question_marks("a\xC3\xA4\xFF\xC3") == "a\xC3\xA4??");
+  CHECK(detail::utf8_or_question_marks("\xED\xA0\x80") == "???");  // a surrogate
+  CHECK(detail::utf8_or_question_marks("\xE2\x82\xAC") == "\xE2\x82\xAC");
+}

@@ -107,6 +107,30 @@ inline bool clip_segment(double& x0, double& y0, double& x1, double& y1, double 
   return true;
 }
 
+// `s` with every byte that is not part of a well-formed UTF-8 sequence replaced by '?': cairo refuses
+// invalid UTF-8 (and would then fail the whole figure).
+inline std::string utf8_or_question_marks(std::string_view s) {
+  std::string out;
+  out.reserve(s.size());
+  for (std::size_t i = 0; i < s.size();) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    const std::size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+    bool ok = n > 0 && i + n <= s.size() && !(n == 2 && c < 0xC2) && !(n == 4 && c > 0xF4);
+    for (std::size_t k = 1; ok && k < n; ++k) ok = (static_cast<unsigned char>(s[i + k]) & 0xC0) == 0x80;
+    if (ok && n == 3) {  // no overlong forms, no surrogates
+      const unsigned char d = static_cast<unsigned char>(s[i + 1]);
+      ok = !(c == 0xE0 && d < 0xA0) && !(c == 0xED && d >= 0xA0);
+    }
+    if (ok && n == 4) {
+      const unsigned char d = static_cast<unsigned char>(s[i + 1]);
+      ok = !(c == 0xF0 && d < 0x90) && !(c == 0xF4 && d >= 0x90);
+    }
+    if (ok) out.append(s.substr(i, n)), i += n;
+    else out.push_back('?'), ++i;
+  }
+  return out;
+}
+
 // Drawing and text measurement on one cairo context (not owned).
 class Canvas {
  public:
@@ -196,7 +220,7 @@ class Canvas {
   double text_width(std::string_view s, double size, bool bold = false) const {
     font(size, bold);
     cairo_text_extents_t e;
-    const std::string str(s);
+    const std::string str = utf8_or_question_marks(s);
     cairo_text_extents(cr_, str.c_str(), &e);
     return std::max(e.x_advance, e.x_bearing + e.width);
   }
@@ -223,7 +247,7 @@ class Canvas {
     if (angle_deg != 0) cairo_rotate(cr_, angle_deg * std::numbers::pi / 180);
     cairo_move_to(cr_, dx - 0.5, base - 0.5);  // text is not pixel-centred: undo the half-pixel shift
     color(c);
-    const std::string str(s);
+    const std::string str = utf8_or_question_marks(s);
     cairo_show_text(cr_, str.c_str());
     cairo_new_path(cr_);
     cairo_restore(cr_);
