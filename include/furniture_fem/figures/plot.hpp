@@ -392,7 +392,7 @@ inline PlotLayout build_layout(int W, int H, const PlotStyle& st, const LayoutIn
   std::vector<std::string> xl;
   const double space = c.text_width("  ", m.fs);
   int right = 2 * m.pad, fw = W - left - right;
-  for (int target = std::clamp(fw / int(11 * m.fs), 2, 10); target >= 1; --target) {
+  for (int target = std::clamp(fw / int(11 * m.fs), 3, 10); target >= 1; --target) {
     make_ticks(in.xlo, in.xhi, in.xlog, target, xt, xl, xminor);
     right = std::max(2 * m.pad, (xl.empty() ? 0 : int(std::ceil(c.text_width(xl.back(), m.fs) / 2))) + m.pad);
     fw = W - left - right;

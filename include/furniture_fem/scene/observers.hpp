@@ -824,6 +824,7 @@ class Figures : public RunObserver {
         .xlabel("time (s)")
         .panels(2);
     p.ylabel("change (J)", 0).ylabel("imbalance (J)", 1);
+    p.style().legend = LegendPos::top_left;  // a run starts quiet: the curves spread out later, to the right
     const auto& names = detail::ledger_terms();
     for (std::size_t k = 0; k < names.size(); ++k) {
       std::string label = names[k];
