@@ -136,6 +136,12 @@ class Canvas {
  public:
   explicit Canvas(cairo_t* cr, bool antialias = true) : cr_(cr) {
     cairo_set_antialias(cr_, antialias ? CAIRO_ANTIALIAS_DEFAULT : CAIRO_ANTIALIAS_NONE);
+    // Unhinted metrics on every surface: text measured on the layout's image surface is as wide on a
+    // PDF or SVG surface (whose metrics are never hinted), so what fits in the PNG fits there too.
+    cairo_font_options_t* fo = cairo_font_options_create();
+    cairo_font_options_set_hint_metrics(fo, CAIRO_HINT_METRICS_OFF);
+    cairo_set_font_options(cr_, fo);
+    cairo_font_options_destroy(fo);
     cairo_set_line_join(cr_, CAIRO_LINE_JOIN_ROUND);
     cairo_set_line_cap(cr_, CAIRO_LINE_CAP_BUTT);
   }
