@@ -2,7 +2,7 @@
 # Installs what a fresh Debian 12 machine lacks (as root, or through sudo), then configures and builds.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-pkgs="cmake g++ make libeigen3-dev zlib1g-dev libcgal-dev libboost-dev catch2 nlohmann-json3-dev libcli11-dev libbenchmark-dev"
+pkgs="cmake g++ make libeigen3-dev zlib1g-dev pkg-config libcairo2-dev libcgal-dev libboost-dev catch2 nlohmann-json3-dev libcli11-dev libbenchmark-dev"
 # Open MPI for furniture_study's ranks (and its test): only for a full build, not the main job's.
 [ -z "${FFEM_TARGETS:-}" ] && pkgs="$pkgs libopenmpi-dev openmpi-bin"
 missing=""

@@ -1,3 +1,3 @@
 #pragma once
-// furniture_fem/figures.hpp: the figures module (line plots, room views, PNG).
+// furniture_fem/figures.hpp: the figures module (line plots, room views; PNG, SVG, PDF through cairo).
 #include "figures/plot.hpp"

@@ -3,7 +3,7 @@
 #
 # A module may include its own headers and the public headers of the modules below it, never a module
 # above it or beside it, never another module's detail/. Third-party headers belong to the module whose
-# target links them: Eigen everywhere, Boost in odeint, CGAL in contact, nlohmann_json in scene. Every
+# target links them: Eigen everywhere, Boost in odeint, CGAL in contact, cairo in figures, nlohmann_json in scene. Every
 # header in a detail/ folder refuses direct inclusion (#error unless its module's public header includes it).
 cmake_minimum_required(VERSION 3.20)  # IN_LIST
 set(below_core "")
@@ -17,6 +17,7 @@ set(below_scene core contact excitation furniture io figures)
 set(below_study core contact excitation furniture io figures scene)
 set(third_party_odeint boost)
 set(third_party_contact CGAL)
+set(third_party_figures cairo)
 set(third_party_scene nlohmann)
 set(modules core odeint contact excitation furniture io figures scene study)
 
@@ -58,7 +59,7 @@ foreach(rel IN LISTS headers)
           list(APPEND errors "${rel}: includes ${target_rel}, an internal header of module '${target_module}'")
         endif()
       endif()
-    elseif(line MATCHES "#[ \t]*include[ \t]*<(boost|CGAL|nlohmann)/")
+    elseif(line MATCHES "#[ \t]*include[ \t]*<(boost|CGAL|nlohmann|cairo)[/.-]")
       set(lib ${CMAKE_MATCH_1})
       set(allowed "")
       foreach(m ${module} ${below_${module}})

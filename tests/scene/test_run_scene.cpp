@@ -220,7 +220,10 @@ json check_outputs(const std::string& out, const SceneSpec& spec, bool expect_fi
       CHECK(vtu_points((fs::path(out) / f).string()) == sum.at("nodes").get<long>());
     }
   }
-  if (expect_figures) check_png(out + "/room_final.png", 1000, 800);
+  if (expect_figures) {
+    check_png(out + "/room_final.png", 1000, 800);
+    check_png(out + "/energy.png", 1000, 800);
+  }
   return sum;
 }
 

@@ -69,7 +69,7 @@ class SimulationError : public Error {
   double time_;
 };
 
-// A result file that cannot be opened or written: "write_png: cannot open 'a/b.png' for writing".
+// A result file that cannot be opened or written: "LinePlot::save_png: cannot write 'a/b.png': ...".
 class OutputError : public Error {
  public:
   using Error::Error;

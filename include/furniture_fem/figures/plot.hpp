@@ -1,21 +1,22 @@
 #pragma once
-// furniture_fem/figures/plot.hpp: figures written straight to PNG, with no plotting program behind them.
+// furniture_fem/figures/plot.hpp: figures drawn with cairo and written as PNG, SVG or PDF.
 //
 //   LinePlot      time histories; stacked panels sharing x (the paper's X/Y/Z displacement figures),
 //                 dashed reference series (experiment), legend, 1-2-5 ticks, optional log axes.
 //   ScatterPlot   labelled points, log axes, Pareto front (wall time vs error).
-//   Wireframe3D   beam segments in 3-D (orthographic or perspective), floor grid, translucent walls.
+//   Wireframe3D   beam segments in 3-D (orthographic or perspective), floor grid, translucent walls,
+//                 thin reference segments (e.g. initial positions) and text labels at 3-D points.
 //
-// Everything is rasterised by detail/raster.hpp and encoded by detail/png_writer.hpp.
+// Every figure has save_png, save_svg and save_pdf (the same layout; SVG and PDF sizes are in points,
+// one per pixel) and render() (the pixels, for tests). Text is set in "sans-serif" through cairo's
+// text API and measured before it is placed: titles wrap onto a second line, then shrink, so they are
+// never clipped. Drawing goes through detail/canvas.hpp, the only header that includes cairo's.
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -27,66 +28,10 @@
 #include "../core/errors.hpp"
 
 #define FURNITURE_FEM_FIGURES_INTERNAL
-#include "detail/png_writer.hpp"
-#include "detail/raster.hpp"
+#include "detail/canvas.hpp"
 #undef FURNITURE_FEM_FIGURES_INTERNAL
 
 namespace furniture_fem {
-
-// ================================ PNG ============================================================
-
-enum class PngCompression {
-  stored,         // uncompressed deflate blocks: ~3 bytes per pixel, trivially checkable
-  fixed_huffman,  // one fixed-Huffman block with LZ77: flat-colour plots shrink 20-100x
-};
-
-// The bytes of a PNG file (RGB, 8 bits per channel, no interlace, filter 0 on every row).
-inline std::vector<std::uint8_t> encode_png(const Image& img, PngCompression mode = PngCompression::fixed_huffman) {
-  if (img.w <= 0 || img.h <= 0 || img.rgb.size() != std::size_t(img.w) * std::size_t(img.h) * 3)
-    throw InputError("encode_png: image is " + std::to_string(img.w) + "x" + std::to_string(img.h) +
-                                " px but holds " + std::to_string(img.rgb.size()) + " bytes");
-  const std::size_t row = std::size_t(img.w) * 3;
-  std::vector<std::uint8_t> raw;
-  raw.reserve((row + 1) * std::size_t(img.h));
-  for (int y = 0; y < img.h; ++y) {
-    raw.push_back(0);  // filter type None
-    raw.insert(raw.end(), img.rgb.begin() + std::ptrdiff_t(row * y), img.rgb.begin() + std::ptrdiff_t(row * (y + 1)));
-  }
-  const std::vector<std::uint8_t> z = detail::png::zlib_compress(raw, mode == PngCompression::fixed_huffman, row + 1);
-
-  std::vector<std::uint8_t> out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
-  out.reserve(z.size() + 128);
-  std::vector<std::uint8_t> ihdr;
-  detail::png::put_be32(ihdr, std::uint32_t(img.w));
-  detail::png::put_be32(ihdr, std::uint32_t(img.h));
-  ihdr.insert(ihdr.end(), {8, 2, 0, 0, 0});  // bit depth 8, colour type 2 (RGB), deflate, filter 0, no interlace
-  detail::png::put_chunk(out, "IHDR", ihdr.data(), ihdr.size());
-  // Several IDAT chunks keep each one small; decoders concatenate them.
-  constexpr std::size_t idat_max = std::size_t(1) << 18;
-  for (std::size_t pos = 0; pos < z.size(); pos += idat_max)
-    detail::png::put_chunk(out, "IDAT", z.data() + pos, std::min(idat_max, z.size() - pos));
-  detail::png::put_chunk(out, "IEND", nullptr, 0);
-  return out;
-}
-
-// Writes `img` to `path`; throws InputError (a bad image) or OutputError (a file that cannot be
-// written), naming the path.
-inline void write_png(const std::string& path, const Image& img, PngCompression mode = PngCompression::fixed_huffman) {
-  std::vector<std::uint8_t> bytes;
-  try {
-    bytes = encode_png(img, mode);
-  } catch (const std::exception& e) {
-    throw InputError("write_png '" + path + "': " + e.what());
-  }
-  errno = 0;
-  std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  if (!f)
-    throw OutputError("write_png: cannot open '" + path + "' for writing" +
-                             (errno ? std::string(": ") + std::strerror(errno) : std::string()));
-  f.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-  f.close();
-  if (!f) throw OutputError("write_png: error while writing '" + path + "'");
-}
 
 // ================================ colours and ticks ==============================================
 
@@ -196,23 +141,32 @@ struct PanelLayout {
   std::vector<double> xticks, yticks, xminor, yminor;
   std::vector<std::string> xtick_labels, ytick_labels;  // empty labels on panels that share x
   Rect legend;  // empty when there is no legend
+  double legend_font = 0;  // px
+};
+
+// A block of text as laid out: its lines, its font size (px) and the box it occupies.
+struct TextBlock {
+  std::vector<std::string> lines;
+  double size = 0;
+  Rect box;
 };
 
 struct PlotLayout {
   int width = 0, height = 0;
+  TextBlock title;  // no lines when the figure has no title
   std::vector<PanelLayout> panels;
 };
 
 enum class LegendPos { none, top_right, top_left, bottom_right, bottom_left };
 
 struct PlotStyle {
-  int text_scale = 0;  // font magnification; 0 picks 2 for images at least 450 px in both sides, else 1
+  double font_size = 0;  // px of tick labels, axis labels and legends; 0: 14 when both sides are at least 450 px, else 11
   RGB background = colors::white, foreground = colors::black, grid = colors::light_grey;
   bool grid_lines = true;
   bool antialias = true;
   double line_width = 2.0;  // default series width in px
   LegendPos legend = LegendPos::top_right;
-  int scale_for(int w, int h) const { return text_scale > 0 ? text_scale : (std::min(w, h) >= 450 ? 2 : 1); }
+  double font_for(int w, int h) const { return font_size > 0 ? font_size : (std::min(w, h) >= 450 ? 14.0 : 11.0); }
 };
 
 namespace detail {
@@ -252,10 +206,71 @@ struct LayoutInput {
   std::vector<PanelInput> panels;
 };
 
+// Sizes derived from the font size: text line height, padding, gaps, tick length (px).
 struct Metrics {
-  int s, th, pad, gap, tick;
-  explicit Metrics(int scale) : s(scale), th(text_height(scale)), pad(6 * scale), gap(3 * scale), tick(3 * scale) {}
+  double fs, title_fs;
+  int th, pad, gap, tick;
+  Metrics(const Canvas& c, double font)
+      : fs(font), title_fs(std::round(1.3 * font)), th(int(std::ceil(c.line_height(font)))),
+        pad(std::max(3, int(std::lround(0.5 * font)))), gap(std::max(2, int(std::lround(0.25 * font)))),
+        tick(std::max(3, int(std::lround(0.35 * font)))) {}
 };
+
+// `text` laid out in at most `max_lines` lines no wider than max_w: on one line at `size` if it fits,
+// else wrapped at spaces, shrinking the size (down to 70 %) until the wrapped lines fit; as a last
+// resort one line shrunk to the width. The block's box is placed centred on `cx`, its top at `top`.
+inline TextBlock fit_text(const Canvas& c, const std::string& text, double max_w, double size, int max_lines, bool bold,
+                          double cx, int top) {
+  TextBlock b;
+  if (text.empty()) return b;
+  std::vector<std::string> words;
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t j = std::min(text.find(' ', i), text.size());
+    if (j > i) words.push_back(text.substr(i, j - i));
+    i = j + 1;
+  }
+  auto wrap = [&](double sz) {
+    std::vector<std::string> lines;
+    std::string cur;
+    for (const auto& w : words) {
+      const std::string trial = cur.empty() ? w : cur + " " + w;
+      if (cur.empty() || c.text_width(trial, sz, bold) <= max_w) cur = trial;
+      else lines.push_back(cur), cur = w;
+    }
+    if (!cur.empty()) lines.push_back(cur);
+    return lines;
+  };
+  auto fits = [&](const std::vector<std::string>& lines, double sz) {
+    if (int(lines.size()) > max_lines) return false;
+    for (const auto& l : lines)
+      if (c.text_width(l, sz, bold) > max_w) return false;
+    return true;
+  };
+  b.size = size;
+  b.lines = {text};
+  if (!fits(b.lines, size)) {
+    bool ok = false;
+    for (double sz = size; sz >= 0.7 * size - 1e-9 && !ok; sz -= std::max(0.5, 0.05 * size)) {
+      const auto lines = wrap(sz);
+      if (fits(lines, sz)) b.lines = lines, b.size = sz, ok = true;
+    }
+    if (!ok) {
+      b.lines = {text};
+      b.size = std::max(1.0, std::floor(size * max_w / c.text_width(text, size, bold) * 10) / 10);
+    }
+  }
+  double w = 0;
+  for (const auto& l : b.lines) w = std::max(w, c.text_width(l, b.size, bold));
+  const int h = int(std::ceil(c.line_height(b.size, bold) * double(b.lines.size())));
+  b.box = {int(std::floor(cx - 0.5 * w)), top, int(std::ceil(cx + 0.5 * w)), top + h - 1};
+  return b;
+}
+
+inline void draw_text_block(const Canvas& c, const TextBlock& b, RGB colour, bool bold) {
+  const double lh = c.line_height(b.size, bold), cx = 0.5 * (b.box.x0 + b.box.x1);
+  for (std::size_t k = 0; k < b.lines.size(); ++k)
+    c.text(cx, b.box.y0 + double(k) * lh, b.lines[k], colour, b.size, HAlign::center, VAlign::top, bold);
+}
 
 // Min and max of the finite (and, on a log axis, positive) values; {+inf, -inf} when there are none.
 inline std::pair<double, double> finite_range(const std::vector<double>& v, bool log) {
@@ -312,20 +327,26 @@ inline void make_ticks(double lo, double hi, bool log, int target, std::vector<d
   for (double v : major) labels.push_back(format_tick(v, step));
 }
 
-inline int max_width(const std::vector<std::string>& labels, int s) {
-  int w = 0;
-  for (const auto& l : labels) w = std::max(w, text_width(l, s));
+inline double max_width(const Canvas& c, const std::vector<std::string>& labels, double size) {
+  double w = 0;
+  for (const auto& l : labels) w = std::max(w, c.text_width(l, size));
   return w;
 }
 
-inline Rect legend_rect(const std::vector<LegendItem>& items, const Rect& frame, LegendPos pos, const Metrics& m) {
+// The legend box in a corner of `frame`; its font shrinks (down to 60 %) when the box would be wider
+// than 60 % of the frame.
+inline Rect legend_rect(const Canvas& c, const std::vector<LegendItem>& items, const Rect& frame, LegendPos pos,
+                        const Metrics& m, double& font) {
   std::vector<std::string> labels;
   for (const auto& it : items)
     if (!it.label.empty()) labels.push_back(it.label);
+  font = m.fs;
   if (labels.empty() || pos == LegendPos::none) return {};
-  const int row = m.th + 2 * m.gap, sample = 14 * m.s;
-  const int w = m.pad + sample + m.pad + max_width(labels, m.s) + m.pad;
-  const int h = int(labels.size()) * row + 2 * m.gap;
+  const int sample = int(std::lround(2.2 * m.fs));
+  auto width = [&](double f) { return int(std::ceil(3 * m.pad + sample + max_width(c, labels, f))); };
+  while (width(font) > 0.6 * frame.width() && font > 0.6 * m.fs) font -= 0.5;
+  const int row = int(std::ceil(c.line_height(font))) + m.gap;
+  const int w = width(font), h = int(labels.size()) * row + 2 * m.gap;
   const int inset = m.pad;
   const bool right = pos == LegendPos::top_right || pos == LegendPos::bottom_right;
   const bool top = pos == LegendPos::top_right || pos == LegendPos::top_left;
@@ -336,43 +357,47 @@ inline Rect legend_rect(const std::vector<LegendItem>& items, const Rect& frame,
 
 // Stacked panels sharing x: title on top, x tick labels and x label under the bottom panel only.
 inline PlotLayout build_layout(int W, int H, const PlotStyle& st, const LayoutInput& in) {
-  const Metrics m(st.scale_for(W, H));
+  const Measurer meas;
+  const Canvas& c = meas.canvas();
+  const Metrics m(c, st.font_for(W, H));
   const int n = int(in.panels.size());
   PlotLayout L;
   L.width = W, L.height = H;
   L.panels.resize(std::size_t(n));
 
-  const int top = m.pad + (in.title.empty() ? 0 : text_height(m.s + 1) + 2 * m.pad);
-  const int bottom = m.pad + m.tick + m.gap + m.th + (in.xlabel.empty() ? 0 : 3 * m.gap + m.th) + m.gap;
-  const int panel_gap = 3 * m.pad;
+  L.title = fit_text(c, in.title, W - 2.0 * m.pad, m.title_fs, 2, true, 0.5 * (W - 1), m.pad);
+  const int top = m.pad + (in.title.empty() ? 0 : L.title.box.height() + m.pad) + m.gap;
+  const int bottom = m.pad + m.tick + m.gap + m.th + (in.xlabel.empty() ? 0 : m.gap + m.th);
+  const int panel_gap = 2 * m.pad;
   const int panel_h = (H - top - bottom - (n - 1) * panel_gap) / std::max(1, n);
-  if (panel_h < 4 * m.th)
+  if (panel_h < 3 * m.th)
     throw InputError("plot: " + std::to_string(W) + "x" + std::to_string(H) + " px is too small for " +
                                 std::to_string(n) + " panel(s)");
 
   bool any_ylabel = false;
-  int ytick_w = 0;
-  const int ytarget = std::clamp(panel_h / (5 * m.th), 2, 8);
+  double ytick_w = 0;
+  const int ytarget = std::clamp(panel_h / (3 * m.th), 2, 8);
   for (int i = 0; i < n; ++i) {
     const PanelInput& p = in.panels[std::size_t(i)];
     PanelLayout& pl = L.panels[std::size_t(i)];
     pl.y = Axis{p.lo, p.hi, 0, 1, p.y.log};
     make_ticks(p.lo, p.hi, p.y.log, ytarget, pl.yticks, pl.ytick_labels, pl.yminor);
-    ytick_w = std::max(ytick_w, max_width(pl.ytick_labels, m.s));
+    ytick_w = std::max(ytick_w, max_width(c, pl.ytick_labels, m.fs));
     any_ylabel = any_ylabel || !p.y.label.empty();
   }
-  const int left = m.pad + (any_ylabel ? m.th + 3 * m.gap : 0) + ytick_w + m.gap + m.tick;
+  const int left = m.pad + (any_ylabel ? m.th + 2 * m.gap : 0) + int(std::ceil(ytick_w)) + m.gap + m.tick;
 
-  // x ticks: fewer until the labels fit side by side with a two-character gap.
+  // x ticks: fewer until the labels fit side by side with two spaces' gap.
   std::vector<double> xt, xminor;
   std::vector<std::string> xl;
+  const double space = c.text_width("  ", m.fs);
   int right = 2 * m.pad, fw = W - left - right;
-  for (int target = std::clamp(fw / (80 * m.s), 2, 10); target >= 1; --target) {
+  for (int target = std::clamp(fw / int(11 * m.fs), 3, 10); target >= 1; --target) {
     make_ticks(in.xlo, in.xhi, in.xlog, target, xt, xl, xminor);
-    right = std::max(2 * m.pad, (xl.empty() ? 0 : text_width(xl.back(), m.s) / 2) + m.pad);
+    right = std::max(2 * m.pad, (xl.empty() ? 0 : int(std::ceil(c.text_width(xl.back(), m.fs) / 2))) + m.pad);
     fw = W - left - right;
-    int need = 0;
-    for (const auto& l : xl) need += text_width(l, m.s) + 2 * detail::font_cell_w * m.s;
+    double need = 0;
+    for (const auto& l : xl) need += c.text_width(l, m.fs) + space;
     if (need <= fw) break;
   }
   if (fw < 4 * m.th) throw InputError("plot: " + std::to_string(W) + " px is too narrow");
@@ -385,92 +410,92 @@ inline PlotLayout build_layout(int W, int H, const PlotStyle& st, const LayoutIn
     pl.y.p0 = pl.frame.y1, pl.y.p1 = pl.frame.y0;
     pl.xticks = xt, pl.xminor = xminor;
     if (i == n - 1) pl.xtick_labels = xl;
-    pl.legend = legend_rect(in.panels[std::size_t(i)].legend, pl.frame, st.legend, m);
+    pl.legend = legend_rect(c, in.panels[std::size_t(i)].legend, pl.frame, st.legend, m, pl.legend_font);
   }
   return L;
 }
 
-inline void draw_grid(Image& img, const PlotLayout& L, const PlotStyle& st) {
+inline void draw_grid(const Canvas& c, const PlotLayout& L, const PlotStyle& st) {
   if (!st.grid_lines) return;
   for (const PanelLayout& p : L.panels) {
     for (double v : p.xticks) {
-      const int x = int(std::lround(p.x.to_pixel(v)));
-      if (x > p.frame.x0 && x < p.frame.x1) draw_line(img, x, p.frame.y0, x, p.frame.y1, st.grid);
+      const double x = std::round(p.x.to_pixel(v));
+      if (x > p.frame.x0 && x < p.frame.x1) c.line(x, p.frame.y0, x, p.frame.y1, st.grid);
     }
     for (double v : p.yticks) {
-      const int y = int(std::lround(p.y.to_pixel(v)));
-      if (y > p.frame.y0 && y < p.frame.y1) draw_line(img, p.frame.x0, y, p.frame.x1, y, st.grid);
+      const double y = std::round(p.y.to_pixel(v));
+      if (y > p.frame.y0 && y < p.frame.y1) c.line(p.frame.x0, y, p.frame.x1, y, st.grid);
     }
   }
 }
 
-inline void draw_legend(Image& img, const Rect& r, const std::vector<LegendItem>& items, const PlotStyle& st,
-                        const Metrics& m) {
+inline void draw_legend(const Canvas& c, const Rect& r, double font, const std::vector<LegendItem>& items,
+                        const PlotStyle& st, const Metrics& m) {
   if (r.empty()) return;
-  fill_rect(img, r, st.background, 0.85);
-  draw_rect(img, r, colors::grey);
-  StrokeCanvas canvas(img);
-  const int row = m.th + 2 * m.gap, sample = 14 * m.s;
+  c.fill_rect(r, st.background, 0.85);
+  c.stroke_rect(r, colors::grey);
+  const int row = int(std::ceil(c.line_height(font))) + m.gap, sample = int(std::lround(2.2 * m.fs));
   int k = 0;
   for (const LegendItem& it : items) {
     if (it.label.empty()) continue;
-    const int cy = r.y0 + m.gap + k * row + row / 2;
-    const int sx = r.x0 + m.pad;
-    if (it.line) {
-      const std::array<double, 2> dash = it.dashed ? std::array<double, 2>{3 * it.width + 2, 2 * it.width + 2}
-                                                   : std::array<double, 2>{0, 0};
-      canvas.polyline({{double(sx), double(cy)}, {double(sx + sample), double(cy)}}, it.color, it.width, r, dash,
-                      st.antialias);
-    }
-    if (it.marker > 0) fill_circle(img, sx + sample / 2.0, cy, it.marker, it.color, st.antialias);
-    draw_text(img, sx + sample + m.pad, cy, it.label, st.foreground, m.s, HAlign::left, VAlign::middle);
+    const double cy = r.y0 + m.gap + k * row + 0.5 * row;
+    const double sx = r.x0 + m.pad;
+    if (it.line) c.polyline({{sx, cy}, {sx + sample, cy}}, it.color, it.width, r, it.dashed);
+    if (it.marker > 0) c.fill_circle(sx + 0.5 * sample, cy, it.marker, it.color);
+    c.text(sx + sample + m.pad, cy, it.label, st.foreground, font, HAlign::left, VAlign::middle);
     ++k;
   }
 }
 
 // Frame, ticks, tick labels, axis labels, panel titles, legends and the figure title: everything
 // drawn over the data.
-inline void draw_decorations(Image& img, const PlotLayout& L, const PlotStyle& st, const LayoutInput& in) {
-  const Metrics m(st.scale_for(L.width, L.height));
+inline void draw_decorations(const Canvas& c, const PlotLayout& L, const PlotStyle& st, const LayoutInput& in) {
+  const Metrics m(c, st.font_for(L.width, L.height));
   const RGB fg = st.foreground;
   for (std::size_t i = 0; i < L.panels.size(); ++i) {
     const PanelLayout& p = L.panels[i];
     const PanelInput& pin = in.panels[i];
-    draw_rect(img, p.frame, fg);
+    c.stroke_rect(p.frame, fg);
     for (std::size_t k = 0; k < p.xticks.size(); ++k) {
-      const int x = int(std::lround(p.x.to_pixel(p.xticks[k])));
-      draw_line(img, x, p.frame.y1, x, p.frame.y1 + m.tick, fg);
+      const double x = std::round(p.x.to_pixel(p.xticks[k]));
+      c.line(x, p.frame.y1, x, p.frame.y1 + m.tick, fg);
       if (k < p.xtick_labels.size())
-        draw_text(img, x, p.frame.y1 + m.tick + m.gap, p.xtick_labels[k], fg, m.s, HAlign::center, VAlign::top);
+        c.text(x, p.frame.y1 + m.tick + m.gap, p.xtick_labels[k], fg, m.fs, HAlign::center, VAlign::top);
     }
     for (double v : p.xminor) {
-      const int x = int(std::lround(p.x.to_pixel(v)));
-      draw_line(img, x, p.frame.y1, x, p.frame.y1 + m.tick / 2, fg);
+      const double x = std::round(p.x.to_pixel(v));
+      c.line(x, p.frame.y1, x, p.frame.y1 + m.tick / 2, fg);
     }
     for (std::size_t k = 0; k < p.yticks.size(); ++k) {
-      const int y = int(std::lround(p.y.to_pixel(p.yticks[k])));
-      draw_line(img, p.frame.x0 - m.tick, y, p.frame.x0, y, fg);
-      draw_text(img, p.frame.x0 - m.tick - m.gap, y, p.ytick_labels[k], fg, m.s, HAlign::right, VAlign::middle);
+      const double y = std::round(p.y.to_pixel(p.yticks[k]));
+      c.line(p.frame.x0 - m.tick, y, p.frame.x0, y, fg);
+      c.text(p.frame.x0 - m.tick - m.gap, y, p.ytick_labels[k], fg, m.fs, HAlign::right, VAlign::middle);
     }
     for (double v : p.yminor) {
-      const int y = int(std::lround(p.y.to_pixel(v)));
-      draw_line(img, p.frame.x0 - m.tick / 2, y, p.frame.x0, y, fg);
+      const double y = std::round(p.y.to_pixel(v));
+      c.line(p.frame.x0 - m.tick / 2, y, p.frame.x0, y, fg);
     }
-    if (!pin.y.label.empty())
-      draw_text_vertical(img, m.pad + m.th / 2, (p.frame.y0 + p.frame.y1) / 2, pin.y.label, fg, m.s);
+    if (!pin.y.label.empty()) {
+      // Reads upwards, centred on the panel; shrunk when longer than the panel is high.
+      const double w = c.text_width(pin.y.label, m.fs);
+      const double fs = w > p.frame.height() ? m.fs * p.frame.height() / w : m.fs;
+      c.text(m.pad + 0.5 * m.th, 0.5 * (p.frame.y0 + p.frame.y1), pin.y.label, fg, fs, HAlign::center, VAlign::middle,
+             false, -90);
+    }
     if (!pin.title.empty()) {
+      const TextBlock t = fit_text(c, pin.title, p.frame.width() - 4.0 * m.pad, m.fs, 1, false, 0, p.frame.y0 + m.pad);
+      const double tw = c.text_width(t.lines[0], t.size);
       const int tx = p.frame.x0 + m.pad, ty = p.frame.y0 + m.pad;
-      fill_rect(img, {tx - m.gap, ty - m.gap, tx + text_width(pin.title, m.s) + m.gap, ty + m.th + m.gap},
-                st.background, 0.85);
-      draw_text(img, tx, ty, pin.title, fg, m.s);
+      c.fill_rect({tx - m.gap, ty - m.gap, tx + int(std::ceil(tw)) + m.gap, ty + t.box.height() + m.gap}, st.background, 0.85);
+      c.text(tx, ty, t.lines[0], fg, t.size);
     }
-    draw_legend(img, p.legend, pin.legend, st, m);
+    draw_legend(c, p.legend, p.legend_font, pin.legend, st, m);
   }
   if (!L.panels.empty() && !in.xlabel.empty()) {
     const Rect& f = L.panels.back().frame;
-    draw_text(img, (f.x0 + f.x1) / 2, L.height - m.gap - m.pad / 2, in.xlabel, fg, m.s, HAlign::center, VAlign::bottom);
+    c.text(0.5 * (f.x0 + f.x1), L.height - 1 - m.pad, in.xlabel, fg, m.fs, HAlign::center, VAlign::bottom);
   }
-  if (!in.title.empty()) draw_text(img, L.width / 2, m.pad, in.title, fg, m.s + 1, HAlign::center, VAlign::top);
+  draw_text_block(c, L.title, fg, true);
 }
 
 // Pixel positions of a series; non-finite (or non-positive on a log axis) points become gaps.
@@ -494,8 +519,9 @@ struct Series {
   double marker = 0;            // radius in px of a dot at every point; 0: none
 };
 
-class LinePlot {
+class LinePlot : public detail::FigureFiles<LinePlot, 1000, 600> {
  public:
+  static constexpr const char* figure_name = "LinePlot";
   explicit LinePlot(std::string title = "") : title_(std::move(title)), panels_(1) {}
 
   LinePlot& title(std::string t) { return title_ = std::move(t), *this; }
@@ -543,30 +569,26 @@ class LinePlot {
 
   PlotLayout layout(int width = 1000, int height = 600) const { return detail::build_layout(width, height, style_, input()); }
 
-  Image render(int width = 1000, int height = 600) const {
+
+  // Draws the figure on a cairo canvas (what render() and the save_ functions call).
+  void paint(const detail::Canvas& c, int width, int height) const {
     const detail::LayoutInput in = input();
     const PlotLayout L = detail::build_layout(width, height, style_, in);
-    Image img(width, height, style_.background);
-    detail::draw_grid(img, L, style_);
-    StrokeCanvas canvas(img);
+    detail::draw_grid(c, L, style_);
     for (std::size_t i = 0; i < panels_.size(); ++i) {
       const PanelLayout& pl = L.panels[i];
       for (const Series& s : panels_[i].series) {
         const double w = s.width > 0 ? s.width : style_.line_width;
         const auto pts = detail::to_pixels(s.x, s.y, pl);
-        const std::array<double, 2> dash = s.dashed ? std::array<double, 2>{3 * w + 2, 2 * w + 2} : std::array<double, 2>{0, 0};
-        canvas.polyline(pts, *s.color, w, pl.frame, dash, style_.antialias);
+        c.polyline(pts, *s.color, w, pl.frame, s.dashed);
         if (s.marker > 0)
           for (const auto& q : pts)
-            if (pl.frame.contains(int(std::lround(q[0])), int(std::lround(q[1]))))
-              fill_circle(img, q[0], q[1], s.marker, *s.color, style_.antialias);
+            if (std::isfinite(q[0]) && std::isfinite(q[1]) && pl.frame.contains(int(std::lround(q[0])), int(std::lround(q[1]))))
+              c.fill_circle(q[0], q[1], s.marker, *s.color);
       }
     }
-    detail::draw_decorations(img, L, style_, in);
-    return img;
+    detail::draw_decorations(c, L, style_, in);
   }
-
-  void save_png(const std::string& path, int width = 1000, int height = 600) const { write_png(path, render(width, height)); }
 
  private:
   struct Panel {
@@ -645,8 +667,9 @@ struct ScatterPoint {
   std::optional<RGB> color;  // overrides the group colour
 };
 
-class ScatterPlot {
+class ScatterPlot : public detail::FigureFiles<ScatterPlot, 1000, 600> {
  public:
+  static constexpr const char* figure_name = "ScatterPlot";
   explicit ScatterPlot(std::string title = "") : title_(std::move(title)) {}
 
   ScatterPlot& title(std::string t) { return title_ = std::move(t), *this; }
@@ -696,40 +719,38 @@ class ScatterPlot {
     return detail::build_layout(width, height, style_, input(width, height));
   }
 
-  Image render(int width = 1000, int height = 600) const {
+
+  // Draws the figure on a cairo canvas (what render() and the save_ functions call).
+  void paint(const detail::Canvas& c, int width, int height) const {
     const detail::LayoutInput in = input(width, height);
     const PlotLayout L = detail::build_layout(width, height, style_, in);
     const PanelLayout& pl = L.panels[0];
-    const detail::Metrics m(style_.scale_for(width, height));
-    Image img(width, height, style_.background);
-    detail::draw_grid(img, L, style_);
+    const detail::Metrics m(c, style_.font_for(width, height));
+    detail::draw_grid(c, L, style_);
     if (pareto_) {
       std::vector<std::array<double, 2>> pts;
       for (std::size_t i : front()) pts.push_back({pl.x.to_pixel(points_[i].x), pl.y.to_pixel(points_[i].y)});
-      StrokeCanvas(img).polyline(pts, pareto_color_, style_.line_width, pl.frame, {0, 0}, style_.antialias);
+      c.polyline(pts, pareto_color_, style_.line_width, pl.frame);
     }
-    const double r = marker_radius(m);
+    const double r = marker_radius(style_.font_for(width, height));
     for (const ScatterPoint& p : points_) {
       const double px = pl.x.to_pixel(p.x), py = pl.y.to_pixel(p.y);
       if (!std::isfinite(px) || !std::isfinite(py) || !pl.frame.contains(int(std::lround(px)), int(std::lround(py))))
         continue;
-      fill_circle(img, px, py, r + 1, style_.foreground, style_.antialias);
-      fill_circle(img, px, py, r, color_of(p), style_.antialias);
+      c.fill_circle(px, py, r + 1, style_.foreground);
+      c.fill_circle(px, py, r, color_of(p));
       if (p.label.empty()) continue;
       // Right of the marker unless that leaves the frame, then left.
-      const int tw = text_width(p.label, m.s);
+      const double tw = c.text_width(p.label, m.fs);
       const bool right = px + r + m.gap + tw < pl.frame.x1 - m.gap;
-      draw_text(img, int(std::lround(right ? px + r + m.gap : px - r - m.gap)), int(std::lround(py - r)), p.label,
-                style_.foreground, m.s, right ? HAlign::left : HAlign::right, VAlign::bottom);
+      c.text(right ? px + r + m.gap : px - r - m.gap, py - r, p.label, style_.foreground, m.fs,
+             right ? HAlign::left : HAlign::right, VAlign::bottom);
     }
-    detail::draw_decorations(img, L, style_, in);
-    return img;
+    detail::draw_decorations(c, L, style_, in);
   }
 
-  void save_png(const std::string& path, int width = 1000, int height = 600) const { write_png(path, render(width, height)); }
-
  private:
-  double marker_radius(const detail::Metrics& m) const { return 2.5 * m.s; }
+  static double marker_radius(double font) { return 0.36 * font; }
   detail::LayoutInput input(int width, int height) const {
     detail::LayoutInput in;
     in.title = title_, in.xlabel = x_.label, in.xlog = x_.log;
@@ -741,7 +762,7 @@ class ScatterPlot {
     detail::PanelInput pi;
     pi.y = y_;
     std::tie(pi.lo, pi.hi) = detail::resolve_range(y_, ry.first, ry.second, 0.08);
-    const double r = marker_radius(detail::Metrics(style_.scale_for(width, height)));
+    const double r = marker_radius(style_.font_for(width, height));
     for (std::size_t g = 0; g < groups_.size(); ++g) pi.legend.push_back({groups_[g], palette_color(g), 2, false, false, r});
     if (pareto_) pi.legend.push_back({"Pareto front", pareto_color_, style_.line_width, false, true, 0});
     in.panels.push_back(std::move(pi));
@@ -763,9 +784,11 @@ using Segment3 = std::array<Eigen::Vector3d, 2>;
 
 // 3-D line drawing, z up. The camera looks at the centre of everything added, from `azimuth` degrees
 // around z (measured from +x towards +y) and `elevation` degrees above the horizontal; the view is
-// scaled to fill the image. Segments are drawn far to near so nearer members overlap farther ones.
-class Wireframe3D {
+// scaled to fill the image. Segments are drawn far to near so nearer members overlap farther ones;
+// reference segments (thin, e.g. the initial positions) are drawn under all of them, and labels over.
+class Wireframe3D : public detail::FigureFiles<Wireframe3D, 1000, 800> {
  public:
+  static constexpr const char* figure_name = "Wireframe3D";
   explicit Wireframe3D(std::string title = "") : title_(std::move(title)) {}
 
   Wireframe3D& title(std::string t) { return title_ = std::move(t), *this; }
@@ -786,13 +809,22 @@ class Wireframe3D {
 
   // One colour per segment, or a single colour for all of them.
   Wireframe3D& add_segments(const std::vector<Segment3>& segs, const std::vector<RGB>& colours) {
-    if (colours.size() != segs.size() && colours.size() != 1)
-      throw InputError("Wireframe3D::add_segments: " + std::to_string(segs.size()) + " segments but " +
-                                  std::to_string(colours.size()) + " colours (need one per segment, or one)");
-    for (std::size_t i = 0; i < segs.size(); ++i) segs_.push_back({segs[i], colours.size() == 1 ? colours[0] : colours[i]});
+    check_colours("add_segments", segs, colours);
+    for (std::size_t i = 0; i < segs.size(); ++i) segs_.push_back({segs[i], colours.size() == 1 ? colours[0] : colours[i], width_});
     return *this;
   }
   Wireframe3D& add_segments(const std::vector<Segment3>& segs, RGB colour) { return add_segments(segs, std::vector<RGB>{colour}); }
+  // Segments drawn `width` px wide under every member, e.g. the initial positions in light grey.
+  Wireframe3D& add_reference_segments(const std::vector<Segment3>& segs, RGB colour = RGB{190, 190, 190}, double width = 1.0) {
+    for (const Segment3& s : segs) refs_.push_back({s, colour, width});
+    return *this;
+  }
+  // Text at a 3-D point (drawn just above it, in a box outlined in `colour`); labels that would
+  // overlap each other, the title or the legend are moved up or down and joined to their point.
+  Wireframe3D& label(const Eigen::Vector3d& at, std::string text, RGB colour = colors::dark_grey) {
+    labels_.push_back({at, std::move(text), colour});
+    return *this;
+  }
 
   // A planar quad (wall, floor, table top): translucent fill plus outline. fill_alpha 0: outline only.
   Wireframe3D& add_quad(const std::array<Eigen::Vector3d, 4>& corners, RGB colour, double fill_alpha = 0.15) {
@@ -803,50 +835,60 @@ class Wireframe3D {
   Wireframe3D& floor_grid(double x0, double x1, double y0, double y1, double z = 0, double spacing = 0) {
     if (!(x1 > x0) || !(y1 > y0)) throw InputError("Wireframe3D::floor_grid: empty rectangle");
     if (!(spacing > 0)) spacing = nice_step(std::max(x1 - x0, y1 - y0), 10);
-    const RGB c{200, 200, 200};
+    const RGB c{215, 215, 215};
     // Lines on multiples of the spacing (a room from -0.3 to 4.2 m gets lines at 0, 0.5, ...);
     // the rectangle's own edges are the quad outline.
     for (double k = std::ceil(x0 / spacing); k * spacing <= x1 && grid_.size() < 4000; ++k)
-      grid_.push_back({Segment3{Eigen::Vector3d(k * spacing, y0, z), Eigen::Vector3d(k * spacing, y1, z)}, c});
+      grid_.push_back({Segment3{Eigen::Vector3d(k * spacing, y0, z), Eigen::Vector3d(k * spacing, y1, z)}, c, 1.0});
     for (double k = std::ceil(y0 / spacing); k * spacing <= y1 && grid_.size() < 4000; ++k)
-      grid_.push_back({Segment3{Eigen::Vector3d(x0, k * spacing, z), Eigen::Vector3d(x1, k * spacing, z)}, c});
+      grid_.push_back({Segment3{Eigen::Vector3d(x0, k * spacing, z), Eigen::Vector3d(x1, k * spacing, z)}, c, 1.0});
     return add_quad({Eigen::Vector3d(x0, y0, z), Eigen::Vector3d(x1, y0, z), Eigen::Vector3d(x1, y1, z),
                      Eigen::Vector3d(x0, y1, z)},
                     RGB{150, 150, 150}, 0.12);
   }
-  Wireframe3D& legend(std::string label, RGB colour) {
-    legend_.push_back({std::move(label), colour, width_, false, true, 0});
+  Wireframe3D& legend(std::string label, RGB colour, double width = 0) {
+    legend_.push_back({std::move(label), colour, width > 0 ? width : width_, false, true, 0});
     return *this;
   }
   PlotStyle& style() { return style_; }
+  const PlotStyle& style() const { return style_; }
 
   // Pixel position of a 3-D point in a width x height render (NaN when behind a perspective eye).
   Eigen::Vector2d project(const Eigen::Vector3d& p, int width = 1000, int height = 800) const {
-    return view(width, height).pixel(p);
+    const detail::Measurer meas;
+    return view(meas.canvas(), width, height).pixel(p);
+  }
+  // The title as laid out in a width x height render (lines, font size, box).
+  TextBlock title_layout(int width = 1000, int height = 800) const {
+    const detail::Measurer meas;
+    return view(meas.canvas(), width, height).title;
   }
 
-  Image render(int width = 1000, int height = 800) const {
-    const View v = view(width, height);
-    const detail::Metrics m(style_.scale_for(width, height));
-    Image img(width, height, style_.background);
+
+  // Draws the figure on a cairo canvas (what render() and the save_ functions call).
+  void paint(const detail::Canvas& c, int width, int height) const {
+    const View v = view(c, width, height);
+    const detail::Metrics m(c, style_.font_for(width, height));
     auto px = [&](const Eigen::Vector3d& p) {
       const Eigen::Vector2d q = v.pixel(p);
       return std::array<double, 2>{q.x(), q.y()};
     };
     for (const Quad& q : quads_) {
       std::vector<std::array<double, 2>> poly;
-      for (const auto& c : q.corners) poly.push_back(px(c));
-      if (q.alpha > 0) fill_polygon(img, poly, q.color, q.alpha);
+      for (const auto& corner : q.corners) poly.push_back(px(corner));
+      if (q.alpha > 0) c.fill_polygon(poly, q.color, q.alpha);
     }
-    for (const Seg& g : grid_) {
+    auto draw = [&](const Seg& g) {
       const auto a = px(g.s[0]), b = px(g.s[1]);
-      draw_line(img, a[0], a[1], b[0], b[1], g.color, 1.0, style_.antialias);
-    }
+      c.line(a[0], a[1], b[0], b[1], g.color, g.width);
+    };
+    for (const Seg& g : grid_) draw(g);
     for (const Quad& q : quads_)
       for (int k = 0; k < 4; ++k) {
         const auto a = px(q.corners[std::size_t(k)]), b = px(q.corners[std::size_t((k + 1) % 4)]);
-        draw_line(img, a[0], a[1], b[0], b[1], q.color, 1.0, style_.antialias);
+        c.line(a[0], a[1], b[0], b[1], q.color, 1.0);
       }
+    for (const Seg& g : refs_) draw(g);
     std::vector<std::size_t> order(segs_.size());
     std::vector<double> depth(segs_.size());
     for (std::size_t i = 0; i < segs_.size(); ++i) {
@@ -854,31 +896,45 @@ class Wireframe3D {
       depth[i] = v.depth(0.5 * (segs_[i].s[0] + segs_[i].s[1]));
     }
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return depth[a] < depth[b]; });
-    for (std::size_t i : order) {
-      const auto a = px(segs_[i].s[0]), b = px(segs_[i].s[1]);
-      draw_line(img, a[0], a[1], b[0], b[1], segs_[i].color, width_, style_.antialias);
-    }
-    if (axes_) draw_triad(img, v, m);
-    if (!title_.empty()) draw_text(img, width / 2, m.pad, title_, style_.foreground, m.s + 1, HAlign::center);
+    cairo_set_line_cap(c.context(), CAIRO_LINE_CAP_ROUND);
+    for (std::size_t i : order) draw(segs_[i]);
+    cairo_set_line_cap(c.context(), CAIRO_LINE_CAP_BUTT);
+    if (axes_) draw_triad(c, v, m, height);
+    detail::draw_text_block(c, v.title, style_.foreground, true);
+    std::vector<Rect> taken;
+    if (!v.title.lines.empty()) taken.push_back(v.title.box);
     if (!legend_.empty()) {
       const Rect frame{0, v.top, width - 1, height - 1};
-      detail::draw_legend(img, detail::legend_rect(legend_, frame, LegendPos::top_left, m), legend_, style_, m);
+      double font = m.fs;
+      const Rect r = detail::legend_rect(c, legend_, frame, LegendPos::top_left, m, font);
+      detail::draw_legend(c, r, font, legend_, style_, m);
+      taken.push_back(r);
     }
-    return img;
+    draw_labels(c, v, m, width, height, taken);
   }
-
-  void save_png(const std::string& path, int width = 1000, int height = 800) const { write_png(path, render(width, height)); }
 
  private:
   struct Seg {
     Segment3 s;
     RGB color;
+    double width;
   };
   struct Quad {
     std::array<Eigen::Vector3d, 4> corners;
     RGB color;
     double alpha;
   };
+  struct Label {
+    Eigen::Vector3d at;
+    std::string text;
+    RGB color;
+  };
+
+  static void check_colours(const char* who, const std::vector<Segment3>& segs, const std::vector<RGB>& colours) {
+    if (colours.size() != segs.size() && colours.size() != 1)
+      throw InputError(std::string("Wireframe3D::") + who + ": " + std::to_string(segs.size()) + " segments but " +
+                                  std::to_string(colours.size()) + " colours (need one per segment, or one)");
+  }
 
   // Camera frame and the 2-D fit of everything into the image below the title.
   struct View {
@@ -887,6 +943,7 @@ class Wireframe3D {
     double eye = 0;  // eye distance from c (perspective)
     double scale = 1, cx = 0, cy = 0, ox = 0, oy = 0;
     int top = 0;
+    TextBlock title;
     Eigen::Vector2d screen(const Eigen::Vector3d& p) const {
       const Eigen::Vector3d q = p - c;
       Eigen::Vector2d s(q.dot(right), q.dot(up));
@@ -904,17 +961,22 @@ class Wireframe3D {
     }
   };
 
-  View view(int W, int H) const {
-    const detail::Metrics m(style_.scale_for(W, H));
+  template <class F>
+  void each_point(F&& f) const {
+    for (const Seg& s : segs_) f(s.s[0]), f(s.s[1]);
+    for (const Seg& s : refs_) f(s.s[0]), f(s.s[1]);
+    for (const Seg& s : grid_) f(s.s[0]), f(s.s[1]);
+    for (const Quad& q : quads_)
+      for (const auto& corner : q.corners) f(corner);
+  }
+
+  View view(const detail::Canvas& canvas, int W, int H) const {
+    const detail::Metrics m(canvas, style_.font_for(W, H));
     View v;
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    auto grow = [&](const Eigen::Vector3d& p) {
+    each_point([&](const Eigen::Vector3d& p) {
       if (p.allFinite()) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    };
-    for (const Seg& s : segs_) grow(s.s[0]), grow(s.s[1]);
-    for (const Seg& s : grid_) grow(s.s[0]), grow(s.s[1]);
-    for (const Quad& q : quads_)
-      for (const auto& c : q.corners) grow(c);
+    });
     if (!(lo.x() <= hi.x())) lo.setZero(), hi.setOnes();
     v.c = 0.5 * (lo + hi);
     const double radius = std::max(0.5 * (hi - lo).norm(), 1e-12);
@@ -928,38 +990,83 @@ class Wireframe3D {
     v.eye = dist_ * radius;
     // Fit the projected points into the drawing area with equal scale on both axes.
     double sx0 = std::numeric_limits<double>::infinity(), sx1 = -sx0, sy0 = sx0, sy1 = -sx0;
-    auto fit = [&](const Eigen::Vector3d& p) {
+    each_point([&](const Eigen::Vector3d& p) {
       const Eigen::Vector2d s = v.screen(p);
       if (!s.allFinite()) return;
       sx0 = std::min(sx0, s.x()), sx1 = std::max(sx1, s.x()), sy0 = std::min(sy0, s.y()), sy1 = std::max(sy1, s.y());
-    };
-    for (const Seg& s : segs_) fit(s.s[0]), fit(s.s[1]);
-    for (const Seg& s : grid_) fit(s.s[0]), fit(s.s[1]);
-    for (const Quad& q : quads_)
-      for (const auto& c : q.corners) fit(c);
+    });
     if (!(sx0 <= sx1)) sx0 = sy0 = -1, sx1 = sy1 = 1;
-    v.top = m.pad + (title_.empty() ? 0 : text_height(m.s + 1) + m.pad);
-    const double margin = 2.0 * m.pad;
-    const double aw = std::max(1.0, W - 2 * margin), ah = std::max(1.0, H - v.top - 2 * margin);
+    v.title = detail::fit_text(canvas, title_, W - 2.0 * m.pad, m.title_fs, 2, true, 0.5 * (W - 1), m.pad);
+    v.top = m.pad + (title_.empty() ? 0 : v.title.box.height() + m.pad);
+    // Room above the scene for the labels of its highest points.
+    const double margin = 2.0 * m.pad, above = labels_.empty() ? 0.0 : m.th + 2.0 * m.gap;
+    const double aw = std::max(1.0, W - 2 * margin), ah = std::max(1.0, H - v.top - 2 * margin - above);
     v.scale = std::min(aw / std::max(sx1 - sx0, 1e-12 * radius), ah / std::max(sy1 - sy0, 1e-12 * radius));
     v.cx = 0.5 * (sx0 + sx1), v.cy = 0.5 * (sy0 + sy1);
-    v.ox = 0.5 * W, v.oy = v.top + margin + 0.5 * ah;
+    v.ox = 0.5 * W, v.oy = v.top + margin + above + 0.5 * ah;
     return v;
   }
 
   // x, y, z arrows in the bottom-left corner, so the viewing direction is unambiguous.
-  void draw_triad(Image& img, const View& v, const detail::Metrics& m) const {
-    const double len = 16.0 * m.s;
-    const double ox = m.pad + len + m.th, oy = img.h - m.pad - len - m.th;
+  void draw_triad(const detail::Canvas& c, const View& v, const detail::Metrics& m, int height) const {
+    const double len = 2.2 * m.fs;
+    const double ox = m.pad + len + m.th, oy = height - m.pad - len - m.th;
     const std::array<RGB, 3> col = {RGB{214, 39, 40}, RGB{44, 160, 44}, RGB{31, 119, 180}};
     const char* name[3] = {"x", "y", "z"};
     for (int k = 0; k < 3; ++k) {
       const Eigen::Vector3d d = Eigen::Vector3d::Unit(k);
       const double dx = d.dot(v.right) * len, dy = -d.dot(v.up) * len;
-      draw_line(img, ox, oy, ox + dx, oy + dy, col[std::size_t(k)], 2.0, style_.antialias);
+      c.line(ox, oy, ox + dx, oy + dy, col[std::size_t(k)], 2.0);
       const double n = std::max(1e-9, std::hypot(dx, dy));
-      draw_text(img, int(std::lround(ox + dx + dx / n * m.th)), int(std::lround(oy + dy + dy / n * m.th)), name[k],
-                col[std::size_t(k)], m.s, HAlign::center, VAlign::middle);
+      c.text(ox + dx + dx / n * 0.7 * m.th, oy + dy + dy / n * 0.7 * m.th, name[k], col[std::size_t(k)], m.fs,
+             HAlign::center, VAlign::middle);
+    }
+  }
+
+  // Each label centred just above its point; when it would overlap one already placed (or the title,
+  // or the legend), or leave the image, it moves up (else down) by whole rows and a thin line joins it
+  // to its point.
+  void draw_labels(const detail::Canvas& c, const View& v, const detail::Metrics& m, int W, int H,
+                   std::vector<Rect>& taken) const {
+    const double fs = 0.9 * m.fs;
+    const int th = int(std::ceil(c.line_height(fs))), row = th + m.gap;
+    auto overlaps = [](const Rect& a, const Rect& b) { return a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1; };
+    struct Placed {
+      const Label* label;
+      Eigen::Vector2d at;
+      Rect box;
+    };
+    std::vector<Placed> placed_labels;
+    for (const Label& l : labels_) {
+      const Eigen::Vector2d p = v.pixel(l.at);
+      if (!p.allFinite() || l.text.empty()) continue;
+      const int w = int(std::ceil(c.text_width(l.text, fs))) + 2 * m.gap;
+      int x0 = int(std::lround(p.x() - 0.5 * w));
+      x0 = std::clamp(x0, 1, std::max(1, W - 2 - w));
+      const int y_base = int(std::lround(p.y())) - m.gap - th;
+      Rect best{x0, y_base, x0 + w - 1, y_base + th - 1};
+      bool placed = false;
+      for (int k = 0; k < 25 && !placed; ++k) {
+        const int shift = (k <= 12 ? -k : k - 12) * row;  // 0, 1, ..., 12 rows up, then 1, ..., 12 down
+        const Rect r{x0, y_base + shift, x0 + w - 1, y_base + shift + th - 1};
+        if (r.y0 < 1 || r.y1 > H - 2) continue;
+        bool free = true;
+        for (const Rect& t : taken) free = free && !overlaps(r, t);
+        if (free) best = r, placed = true;
+      }
+      if (best.y0 < 1) best.y1 += 1 - best.y0, best.y0 = 1;
+      taken.push_back(best);
+      placed_labels.push_back({&l, p, best});
+    }
+    // Leader lines first, so that no line crosses a label's box.
+    for (const auto& [l, p, r] : placed_labels)
+      if (r.y1 + 1 < p.y() - m.gap || r.y0 > p.y() + 1)
+        c.line(p.x(), p.y(), std::clamp(p.x(), double(r.x0), double(r.x1)), r.y1 + 1 < p.y() ? r.y1 : r.y0, l->color, 1.0);
+    for (const auto& [l, p, r] : placed_labels) {
+      c.fill_circle(p.x(), p.y(), 2.5, l->color);
+      c.fill_rect(r, style_.background, 0.85);
+      c.stroke_rect(r, l->color);
+      c.text(0.5 * (r.x0 + r.x1), 0.5 * (r.y0 + r.y1), l->text, style_.foreground, fs, HAlign::center, VAlign::middle);
     }
   }
 
@@ -969,8 +1076,9 @@ class Wireframe3D {
   double dist_ = 3.0;
   double width_ = 2.0;
   bool axes_ = true;
-  std::vector<Seg> segs_, grid_;
+  std::vector<Seg> segs_, refs_, grid_;
   std::vector<Quad> quads_;
+  std::vector<Label> labels_;
   std::vector<detail::LegendItem> legend_;
   PlotStyle style_;
 };

@@ -14,7 +14,7 @@
 //   FinalStateFile         final_state.json                              files
 //   SummaryFile            summary.json                                  files
 //   Figures                marker_*.png, shear_*.png, input_motion.png,  files, figures on
-//                          room_final.png
+//                          energy.png, room_final.png
 //
 // standard_observers() picks them from the scene's outputs and the RunOptions. The file formats are
 // described in docs/io/output.md.
@@ -729,6 +729,7 @@ class Figures : public RunObserver {
     marker_series_.resize(3 * run.requests.markers.size());
     shear_series_.resize(2 * run.requests.sections.size());
     motion_series_.resize(9);
+    energy_series_.resize(detail::ledger_terms().size() + 1);
     table_.start(run.motion, run.sim.time());
     sample(run);
   }
@@ -740,15 +741,19 @@ class Figures : public RunObserver {
     draw_markers(run);
     draw_shears(run);
     draw_input_motion(run);
+    draw_energy(run);
     draw_room(run);
   }
-  void save(StateWriter& w) override { w(t_, marker_series_, shear_series_, motion_series_, table_); }
-  void resume(const RunView&, StateReader& r) override { r(t_, marker_series_, shear_series_, motion_series_, table_); }
+  void save(StateWriter& w) override { w(t_, marker_series_, shear_series_, motion_series_, energy_series_, table_); }
+  void resume(const RunView&, StateReader& r) override {
+    r(t_, marker_series_, shear_series_, motion_series_, energy_series_, table_);
+  }
 
  private:
   std::vector<double> t_;
   std::vector<std::vector<double>> marker_series_, shear_series_;
   std::vector<std::vector<double>> motion_series_;  // acceleration x y z, velocity x y z, displacement x y z
+  std::vector<std::vector<double>> energy_series_;  // the ledger's terms (detail::ledger_terms()), then the imbalance
   detail::TableMotionIntegrator table_;
 
   void sample(const RunView& run) {
@@ -758,6 +763,9 @@ class Figures : public RunObserver {
       motion_series_[3 + c].push_back(table_.velocity()[c]);
       motion_series_[6 + c].push_back(table_.displacement()[c]);
     }
+    const auto terms = detail::ledger_values(run.row_energy);
+    for (std::size_t k = 0; k < terms.size(); ++k) energy_series_[k].push_back(terms[k]);
+    energy_series_[terms.size()].push_back(run.row_energy.imbalance());
     for (size_t i = 0; i < run.requests.markers.size(); ++i) {
       const Vec3 d = run.sim.displacement(run.requests.markers[i].node);
       for (int c = 0; c < 3; ++c) marker_series_[3 * i + c].push_back(d[c]);
@@ -807,17 +815,44 @@ class Figures : public RunObserver {
     }
     p.save_png(run.out_dir + "/input_motion.png", 1000, 900);
   }
+  // energy.png: the energy ledger's terms against time, each as its change since the first row (the
+  // gravity potential's absolute value depends on the datum and would flatten the rest), and the
+  // imbalance below; sampled at the history rows (the rows of energy.csv).
+  void draw_energy(const RunView& run) const {
+    LinePlot p;
+    p.title("Energy ledger: change of each term since t = " + detail::fmt3(t_.empty() ? 0.0 : t_.front()) + " s")
+        .xlabel("time (s)")
+        .panels(2);
+    p.ylabel("change (J)", 0).ylabel("imbalance (J)", 1);
+    p.style().legend = LegendPos::top_left;  // a run starts quiet: the curves spread out later, to the right
+    const auto& names = detail::ledger_terms();
+    for (std::size_t k = 0; k < names.size(); ++k) {
+      std::string label = names[k];
+      std::replace(label.begin(), label.end(), '_', ' ');
+      std::vector<double> change = energy_series_[k];
+      for (double& e : change) e -= energy_series_[k].front();
+      p.add(t_, std::move(change), label, 0);
+    }
+    p.add(t_, energy_series_[names.size()], "imbalance", 1);
+    p.save_png(run.out_dir + "/energy.png", 1000, 800);
+  }
+  // room_final.png: every member at the end (the item's colour) over its initial position (light grey),
+  // each item's name next to its highest point.
   void draw_room(const RunView& run) const {
     const SceneSpec& spec = run.spec;
     const Model& model = run.model;
     Wireframe3D w;
-    w.title(spec.name + ": final state at t = " + std::to_string(run.sim.time()).substr(0, 5) + " s").camera(-60, 25);
-    std::vector<Segment3> segs;
+    w.title(spec.name + ": final state at t = " + std::to_string(run.sim.time()).substr(0, 5) + " s (grey: initial)")
+        .camera(-60, 25);
+    std::vector<Segment3> segs, initial;
     std::vector<RGB> cols;
     for (int e = 0; e < model.num_elements(); ++e) {
-      segs.push_back({run.sim.position(model.elements()[e].n1), run.sim.position(model.elements()[e].n2)});
-      cols.push_back(palette_color(model.elements()[e].body));
+      const auto& el = model.elements()[e];
+      segs.push_back({run.sim.position(el.n1), run.sim.position(el.n2)});
+      initial.push_back({model.node(el.n1).X, model.node(el.n2).X});
+      cols.push_back(palette_color(el.body));
     }
+    w.add_reference_segments(initial, RGB{195, 195, 195}, 1.5);
     w.add_segments(segs, cols);
     w.floor_grid(-0.5 * spec.table.size_x, 0.5 * spec.table.size_x, -0.5 * spec.table.size_y,
                  0.5 * spec.table.size_y, spec.table.floor_z, 0.5);
@@ -826,7 +861,19 @@ class Figures : public RunObserver {
       const Vec3 h(0, 0, wall.height);
       w.add_quad({wall.point - u, wall.point + u, wall.point + u + h, wall.point - u + h}, RGB{150, 150, 150}, 0.15);
     }
-    for (const auto& it : run.items) w.legend(it.name, palette_color(it.body));
+    for (const auto& it : run.items) {
+      w.legend(it.name, palette_color(it.body));
+      // The label sits over the item's highest point now: the centre of its nodes within 1 mm of the top.
+      double zmax = -std::numeric_limits<double>::infinity();
+      for (int n = 0; n < model.num_nodes(); ++n)
+        if (model.node(n).body == it.body) zmax = std::max(zmax, run.sim.position(n).z());
+      Vec3 sum = Vec3::Zero();
+      int count = 0;
+      for (int n = 0; n < model.num_nodes(); ++n)
+        if (model.node(n).body == it.body && run.sim.position(n).z() >= zmax - 1e-3) sum += run.sim.position(n), ++count;
+      if (count > 0) w.label(sum / count, it.name, palette_color(it.body));
+    }
+    w.legend("initial position", RGB{195, 195, 195}, 1.5);
     w.save_png(run.out_dir + "/room_final.png", 1000, 800);
   }
 };

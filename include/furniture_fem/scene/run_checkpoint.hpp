@@ -26,7 +26,7 @@
 namespace furniture_fem {
 
 inline constexpr const char* checkpoint_file = "checkpoint.bin";
-inline constexpr std::string_view checkpoint_magic = "furniture_fem checkpoint 1";
+inline constexpr std::string_view checkpoint_magic = "furniture_fem checkpoint 2";  // 2: the Figures observer keeps the energy series
 
 // What a resumed run must share with the run that wrote the checkpoint: the scene and every run
 // option that changes a result or a file (not the threads, the progress bar or the checkpoint period).
