@@ -98,7 +98,10 @@ inline std::string realisations_csv(const StudySpec& s, const std::vector<RunRes
     }
     for (const auto& name : sections) {
       const auto it = std::find_if(r.sections.begin(), r.sections.end(), [&](const SectionOutcome& x) { return x.section == name; });
-      for (int k = 0; k < 6; ++k) out += "," + (it == r.sections.end() ? std::string() : num(it->abs_max[k]));
+      for (int k = 0; k < 6; ++k) {
+        out += ',';  // appended piece by piece: "," + std::string&& drew GCC 12's false -Wrestrict warning
+        if (it != r.sections.end()) out += num(it->abs_max[k]);
+      }
     }
     out += "," + detail::csv_field(r.diagnosis) + "\n";
   }
