@@ -201,20 +201,19 @@ class StateReader {
   }
   template <class K, class V, class C, class A>
   void get(std::map<K, V, C, A>& m) {
-    m.clear();
-    for (std::size_t i = 0, n = size(1); i < n; ++i) {
-      K k{};
-      V v{};
-      get(k), get(v);
-      m.emplace(std::move(k), std::move(v));
-    }
+    get_entries(m);
   }
   template <class K, class V, class H, class E, class A>
   void get(std::unordered_map<K, V, H, E, A>& m) {
+    get_entries(m);
+  }
+  // A map's entries (key, value), after their count.
+  template <class Map>
+  void get_entries(Map& m) {
     m.clear();
     for (std::size_t i = 0, n = size(1); i < n; ++i) {
-      K k{};
-      V v{};
+      typename Map::key_type k{};
+      typename Map::mapped_type v{};
       get(k), get(v);
       m.emplace(std::move(k), std::move(v));
     }
