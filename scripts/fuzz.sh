@@ -14,14 +14,7 @@ all="fuzz_record_at2 fuzz_record_knet fuzz_record_jma fuzz_record_columns fuzz_m
 harnesses="${*:-$all}"
 
 pkgs="cmake make clang libclang-rt-14-dev libeigen3-dev zlib1g-dev libcgal-dev libboost-dev nlohmann-json3-dev"
-missing=""
-for p in $pkgs; do dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"; done
-if [ -n "$missing" ]; then
-  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-  echo "installing:$missing"
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $missing
-fi
+bash scripts/install_packages.sh $pkgs
 
 B="$PWD/build-fuzz"
 start=$(date +%s)

@@ -5,14 +5,7 @@ cd "$(dirname "$0")/.."
 pkgs="cmake g++ make libeigen3-dev zlib1g-dev pkg-config libcairo2-dev libcgal-dev libboost-dev catch2 nlohmann-json3-dev libcli11-dev libbenchmark-dev"
 # Open MPI for furniture_study's ranks (and its test): only for a full build, not the main job's.
 [ -z "${FFEM_TARGETS:-}" ] && pkgs="$pkgs libopenmpi-dev openmpi-bin"
-missing=""
-for p in $pkgs; do dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"; done
-if [ -n "$missing" ]; then
-  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-  echo "installing:$missing"
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq $missing
-fi
+bash scripts/install_packages.sh $pkgs
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release ${FFEM_CMAKE_ARGS:-}
 # FFEM_TARGETS: only these targets (the main command builds the main job alone); default: everything.
 targets=""
