@@ -8,8 +8,8 @@
 #                           [--iterate] [--refresh-every S]
 #
 # Cases: (i) kobe50_1d, (ii) kobe100_1d, (iii) kobe100_3d: the PEER-processed JMA-Kobe records
-# (RSN1106; NS along X, EW along Y, UD along Z) from --records (default ../shared/ground_motions next
-# to the repository), record time 4-16 s as configuration(k) sets it. When the records are absent
+# (RSN1106; NS along X, EW along Y, UD along Z) from --records (default $FFEM_RECORDS, else
+# ../shared/ground_motions next to the repository), record time 4-16 s as configuration(k) sets it. When the records are absent
 # these cases are skipped with a message. (iv) haga100_3d runs only when --haga gives the three
 # K-NET/KiK-net ASCII files of the KiK-net Haga record (TCGH16, 2011-03-11 14:46; EW first: it goes
 # along X as in the paper, then NS along Y, UD along Z); the window is 4.5 s before to 7.5 s after
@@ -26,7 +26,7 @@ set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 repo=$(dirname "$here")
-records="$repo/../shared/ground_motions"
+records="${FFEM_RECORDS:-$repo/../shared/ground_motions}"
 build="$repo/build-paper"
 configs="1,2,3"
 cases="kobe50_1d,kobe100_1d,kobe100_3d,haga100_3d"
@@ -84,7 +84,9 @@ if [[ $have_kobe -eq 1 ]]; then
   scene_args+=(--records "$records")
 else
   echo "== JMA-Kobe records not found in $records (need ${kobe_files[*]}):"
-  echo "   skipping cases (i)-(iii). Give --records DIR to run them."
+  echo "   skipping cases (i)-(iii). Give --records DIR (or FFEM_RECORDS=DIR) to run them; the PEER NGA-West2"
+  echo "   database has them (RSN1106, files RSN1106_KOBE_KJM000/KJM090/KJM-UP.AT2, saved under the names above):"
+  echo "   docs/excitation/ground_motions.md, \"Getting the records\"."
   scene_args+=(--no-kobe)
 fi
 if [[ ${#haga[@]} -eq 3 ]]; then

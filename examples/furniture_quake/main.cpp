@@ -52,7 +52,7 @@ int interrupted(const std::string& phase) {
 }
 
 struct CommandLine {
-  std::string scene, out_dir, records = "../shared/ground_motions";
+  std::string scene, out_dir, records = default_records_dir();
   double duration = 0;
   int config = 0;  // 0: not asked for
   bool has_duration() const { return duration > 0; }
@@ -123,7 +123,7 @@ void define_options(CLI::App& app, CommandLine& cl, RunOptions& opt) {
   resume->type_name("DIR")->excludes(out)->excludes(overwrite);
   auto* config = app.add_option("--config", cl.config, "the paper's configuration K (1, 2, 3) under the JMA-Kobe records");
   config->type_name("K")->check(configuration_number())->excludes(scene);
-  app.add_option("--records", cl.records, "folder of the JMA-Kobe records for --config")
+  app.add_option("--records", cl.records, "folder of the JMA-Kobe records for --config (default: $FFEM_RECORDS if set)")
       ->type_name("DIR")->capture_default_str()->needs(config);
   app.footer("Exit codes: 0 done, 1 bad input (a scene or record file), 2 usage (a bad command line),\n"
              "3 diverged, 130 interrupted (Ctrl-C or SIGTERM; a second one leaves at once).");

@@ -70,6 +70,13 @@ check(2 "usage error: .*second.json" first.json second.json)
 
 # Bad input: exit 1, the file named.
 check(1 "error: .*no_such_scene.json" no_such_scene.json)
+# A missing record of the paper's configurations says where to get it; FFEM_RECORDS is the default folder.
+check(1 "ground_motion.files.x: record file not found: \"no_records/jma_kobe_1995_NS_PEER_RSN1106_KJM000.AT2\"; get it from the PEER NGA-West2 database.*RSN1106_KOBE_KJM000.AT2"
+      --config 3 --records no_records --quiet)
+set(program_saved "${PROGRAM}")
+set(PROGRAM ${CMAKE_COMMAND} -E env FFEM_RECORDS=records_from_env ${program_saved})
+check(1 "record file not found: \"records_from_env/jma_kobe_1995_NS_PEER_RSN1106_KJM000.AT2\"" --config 3 --quiet)
+set(PROGRAM "${program_saved}")
 
 # A short run completes (exit 0); Ctrl-C and SIGTERM during a run stop it cleanly (exit 130). The
 # signal is sent to the program itself: `exec` keeps the shell's pid, and a foreground program

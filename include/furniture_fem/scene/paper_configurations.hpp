@@ -4,6 +4,7 @@
 #include <string>
 
 #include "../core/errors.hpp"
+#include "../excitation/known_records.hpp"
 #include "../furniture/furniture.hpp"
 #include "laws/law_list.hpp"
 #include "spec.hpp"
@@ -17,8 +18,9 @@ namespace furniture_fem {
 
 // Configuration k = 1, 2 or 3 on the 4 m x 4 m table with walls at x = -2 and x = +2, excited by the
 // JMA-Kobe record (PEER RSN1106: NS along X) at 100 %, 1-D, low-passed at 10 Hz, over record time
-// 4-16 s. `records_dir` is where the AT2 files are (relative paths: relative to the working folder).
-inline SceneSpec configuration(int k, const std::string& records_dir = "../shared/ground_motions") {
+// 4-16 s. `records_dir` is where the AT2 files are (relative paths: relative to the working folder; by
+// default $FFEM_RECORDS, else ../shared/ground_motions: excitation/known_records.hpp).
+inline SceneSpec configuration(int k, const std::string& records_dir = default_records_dir()) {
   if (k < 1 || k > 3)
     throw InputError("configuration", 0, "k", "the paper has configurations 1, 2 and 3 (got " + std::to_string(k) + ")");
   SceneSpec s;

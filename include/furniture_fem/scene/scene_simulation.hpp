@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "../excitation/excitation.hpp"
+#include "../excitation/known_records.hpp"
 #include "../contact/room_contact.hpp"
 #include "laws/law_list.hpp"
 #include "scene.hpp"
@@ -107,7 +108,7 @@ inline Record scene_record(const SceneSpec& s, const std::string& file, const ch
   const std::string path = s.resolve(file);
   const std::string key = std::string("ground_motion.files.") + axis;
   if (path.empty()) throw InputError(s.source, 0, key, "no record file given for this axis");
-  if (!std::filesystem::exists(path)) throw InputError(s.source, 0, key, "record file not found: " + path);
+  if (!std::filesystem::exists(path)) throw InputError(s.source, 0, key, record_not_found(path));
   ReadOptions ro;
   if (g.format == RecordFormat::columns) ro.unit = *declared_unit(g);
   if (g.dt) ro.dt = *g.dt;

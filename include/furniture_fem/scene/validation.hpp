@@ -15,6 +15,7 @@
 
 #include "../core/errors.hpp"
 #include "../core/model.hpp"
+#include "../excitation/known_records.hpp"
 #include "build.hpp"
 #include "item_parameters.hpp"
 #include "spec.hpp"
@@ -238,7 +239,7 @@ inline void validate(const SceneSpec& s) {
       if (detail::has_control_character(*file))
         fail(std::string("ground_motion.files.") + key, "must not hold control characters (a NUL, a newline...)");
       if (!detail::is_file(s.resolve(*file)))
-        fail(std::string("ground_motion.files.") + key, "record file not found: \"" + s.resolve(*file) + "\"");
+        fail(std::string("ground_motion.files.") + key, record_not_found(s.resolve(*file)));
     }
   }
   if (g.source == MotionSource::points) {
