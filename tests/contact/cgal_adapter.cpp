@@ -427,7 +427,7 @@ TEST_CASE("inputs that CGAL 5.5's readers mishandle are named errors or read as 
     CHECK(e.field() == "triangle 1");
     CHECK_THAT(std::string(e.what()), Catch::Contains("not finite (byte 146)"));
   }
-  SECTION("ASCII STL coordinate '1.2.3' (CGAL: read as 1.2)") {
+  SECTION("ASCII STL vertex '1.2.3 0 0' (CGAL: read as (1.2, 0.3, 0))") {
     write_text(tmp + "/dots.stl",
                "solid t\nfacet normal 0 0 1\nouter loop\nvertex 1.2.3 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
                "endloop\nendfacet\nendsolid t\n");
