@@ -88,3 +88,72 @@ TEST_CASE("stability: long shaking", "[stability][strong_motion]") {
     CHECK(it.shift.norm() < 6.0);
   }
 }
+
+namespace {
+
+// One item alone on an open floor under the `stiff` law, every item at full fidelity (its contact
+// inside the implicit step, the law's default), 1 ms.
+SceneSpec stiff_alone(const std::string& kind, double duration) {
+  SceneSpec s = open_floor("stiff: " + kind, 1e-3, duration);
+  s.contact.law = law_kind<StiffSceneLaw>;
+  s.contact.implicit = ImplicitContact::all;  // the law's default, which the scene reader sets (a C++ spec does not)
+  s.items.push_back({kind, ItemKind(kind), 0.0, 0.0, 0.0, Fidelity::full, {}});
+  return s;
+}
+
+RunOptions summary_only() {
+  RunOptions o;
+  o.write_files = false;
+  o.progress = false;
+  return o;
+}
+
+}  // namespace
+
+// The `stiff` law's floor spring holds an item 2.5 um deep under its weight: on a desk's panel edges
+// (13 nodes of 11 to 21 g per edge) that is omega dt = 20 at 1 ms, stable only inside the implicit
+// step. The flexible bodies' contact changes beyond the Woodbury cap (6 nodes) used to wait up to 20
+// steps for a factorisation: the desk diverged at rest within 0.1 s, and the desk, the tall cabinet
+// and the separated cabinets alone under the built-in 3-D motion within 0.4 to 0.9 s (2026-11-26).
+TEST_CASE("stability: every kind at full fidelity under the stiff law, at rest", "[stability][stiff]") {
+  for (const std::string kind : {"tall_cabinet", "separated_cabinets", "side_table", "desk", "office_chair", "bookshelf",
+                                 "locker", "table"}) {
+    SceneSpec s = stiff_alone(kind, 1.0);
+    s.ground_motion.source = MotionSource::points;
+    s.ground_motion.points_x = {{0.0, 0.0}};  // the table at rest
+    const RunSummary sum = run_scene(s, summary_only());
+    std::string finals;
+    for (const auto& it : sum.items) finals += it.name + " slide " + num(it.slide) + " m tilt " + num(it.tilt_deg) + " deg; ";
+    report("stiff law, full fidelity, " + kind + " at rest, 1 s", sum, "slide < 1e-4 m", finals);
+    INFO(kind << ": " << sum.status << " " << sum.diagnosis);
+    REQUIRE(sum.status == "completed");
+    for (const auto& it : sum.items) {
+      INFO(it.name << ": " << it.state << ", slide " << it.slide << " m, tilt " << it.tilt_deg << " deg");
+      // The upper separated cabinet stands on the lower through an explicit item-item pair whose friction
+      // is regularised: it creeps, 6.3 mm in 1 s here and 13 mm in 3 s (9 mm under the paper's law; 0
+      // when both are rigid, a rigid group). Open in issue 10 (docs/contact/implicit_contact.md, "Not yet
+      // inside the step"), so only items on the floor are held to the bound here.
+      if (!it.resting_on.empty()) continue;
+      // Settling onto its springs (2.5 um) and the frame's sag move nothing sideways: drift < 0.1 mm
+      // (issue 10's bound; measured at most 4.5 um), no tilt.
+      CHECK(it.state == "standing");
+      CHECK(it.slide < 1e-4);
+      CHECK(it.tilt_deg < 0.05);
+    }
+  }
+}
+
+TEST_CASE("stability: the stiff law at full fidelity under the built-in 3-D motion", "[stability][stiff]") {
+  for (const std::string kind : {"desk", "tall_cabinet", "separated_cabinets"}) {
+    SceneSpec s = stiff_alone(kind, 2.0);
+    s.ground_motion.source = MotionSource::synthetic;
+    s.ground_motion.dimensions = MotionDimensions::three_d;
+    s.ground_motion.pga = 8.0;  // the main job's motion, its first 2 s
+    const RunSummary sum = run_scene(s, summary_only());
+    report("stiff law, full fidelity, " + kind + " alone, built-in 3-D motion (pga 8 m/s^2), 2 s", sum, "< 1",
+           "factorisations " + std::to_string(sum.factorizations));
+    INFO(kind << ": " << sum.status << " at " << sum.t_end << " s: " << sum.diagnosis);
+    REQUIRE(sum.status == "completed");
+    CHECK(sum.max_energy_imbalance < 1.0);
+  }
+}

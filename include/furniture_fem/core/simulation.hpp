@@ -1338,7 +1338,15 @@ class Simulation {
       const bool reuse = sim.opt_.refresh_interval_steps > 1 && !sim.static_;
       Mat3 Q = Mat3::Identity();
       if (reuse) Q = sim.body_rotation(bs);
+      // The contact terms that changed since the factorisation: put on the solution by the Woodbury
+      // identity after the solve or, more than max_contact_updates of them, factorised now.
+      std::vector<std::pair<int, Mat3>> changes;
+      if (!bs.needs_refresh && !sim.static_) {
+        changes = contact_changes(sim, b, Q * bs.Q_factor.transpose());
+        if (static_cast<int>(changes.size()) > max_contact_updates) bs.needs_refresh = true;
+      }
       if (bs.needs_refresh) {
+        changes.clear();
         factor_contact_terms(sim, bs);
         try {
           sim.timed(s.factorize, [&] { sim.solvers_[b]->factorize(bs.K); });
@@ -1364,7 +1372,7 @@ class Simulation {
         bs.r.template segment<3>(6 * k + 3) = P.transpose() * sim.r_.template segment<3>(6 * g + 3);
       }
       if (!sim.solvers_[b]->solve(bs.r, bs.dx)) s.solve_failed = true;
-      if (!sim.static_ && !s.solve_failed && !contact_update(sim, b, P)) s.solve_failed = true;
+      if (!s.solve_failed && !apply_contact_changes(sim, b, changes)) s.solve_failed = true;
       for (size_t k = 0; k < bs.nodes.size(); ++k) {
         const int g = bs.nodes[k];
         sim.Du_.template segment<3>(6 * g) += P * bs.dx.template segment<3>(6 * k);
@@ -1376,16 +1384,15 @@ class Simulation {
     // changes (a contact opens, closes, sticks or slips): the changes that matter, at most
     // max_contact_updates nodes, are put on the solution by the Woodbury identity,
     // (K + U D U^T) x = r => x = dx - Z y, (I + D U^T Z) y = D U^T dx, Z = K^-1 U, U selecting those
-    // nodes' translations (in the factor's frame: terms rotated by P). A change smaller than
-    // contact_change_tolerance of the term is left to the carried-over unbalance (a modified Newton
-    // step); more changes than the cap ask for a factorisation at the next step (at most every
-    // contact_refresh_min_steps). Z's columns are kept
-    // until the next factorisation. False when a solve fails.
-    // Measured on the main job with every item implicit (docs/contact/implicit_contact.md): 6 updates,
-    // 30 %, 20 steps cost 1.6x its time; leaving the changes out altogether diverges.
-    static constexpr int max_contact_updates = 6;
+    // nodes' translations (in the factor's frame: terms rotated by P); Z's columns are kept until the
+    // next factorisation. A change smaller than contact_change_tolerance of the term is left to the
+    // carried-over unbalance (a modified Newton step). More changes than the cap are factorised in the
+    // same step: left out, even for a few steps, a stiff contact on light nodes (the `stiff` law on a
+    // desk's panel edges: omega dt = 20) diverges within them (docs/contact/implicit_contact.md).
+    // Measured on configuration 3 under the `stiff` law, 2 s: caps of 6 to 64 cost the same
+    // (17-19 s CPU); 16 factorised 197 times against the 120 of the regular refreshes.
+    static constexpr int max_contact_updates = 16;
     static constexpr double contact_change_tolerance = 0.3;
-    static constexpr long contact_refresh_min_steps = 20;
 
     static void factor_contact_terms(Simulation& sim, detail::BodySystem& bs) {
       bs.contact_factored.assign(bs.nodes.size(), Mat3::Zero());
@@ -1405,19 +1412,16 @@ class Simulation {
       return k;
     }
 
-    static bool contact_update(Simulation& sim, int b, const Mat3& P) {
+    // The nodes whose contact term moved by more than contact_change_tolerance since the
+    // factorisation, with the change (in the factor's frame: terms rotated by P).
+    static std::vector<std::pair<int, Mat3>> contact_changes(Simulation& sim, int b, const Mat3& P) {
       auto& bs = sim.systems_[b];
       if (bs.contact_factored.size() != bs.nodes.size()) bs.contact_factored.assign(bs.nodes.size(), Mat3::Zero());
-      // The changes since the factorisation, largest first.
       std::vector<std::pair<int, Mat3>> changes;
-      std::vector<double> size;
-      auto consider = [&](int local, const Mat3& now) {
+      const auto consider = [&](int local, const Mat3& now) {
         const Mat3 d = now - bs.contact_factored[local];
-        const double dn = d.norm();
-        if (dn > contact_change_tolerance * std::max(now.norm(), bs.contact_factored[local].norm())) {
+        if (d.norm() > contact_change_tolerance * std::max(now.norm(), bs.contact_factored[local].norm()))
           changes.emplace_back(local, d);
-          size.push_back(dn);
-        }
       };
       std::vector<char>& seen = bs.contact_seen;
       seen.assign(bs.nodes.size(), 0);
@@ -1427,17 +1431,12 @@ class Simulation {
       }
       for (int local : bs.factored_nodes)
         if (!seen[local]) consider(local, Mat3::Zero());
+      return changes;
+    }
+    // Puts the changes on the solution bs.dx by the Woodbury identity. False when a solve fails.
+    static bool apply_contact_changes(Simulation& sim, int b, const std::vector<std::pair<int, Mat3>>& changes) {
+      auto& bs = sim.systems_[b];
       if (changes.empty()) return true;
-      if (static_cast<int>(changes.size()) > max_contact_updates) {
-        std::vector<int> order(changes.size());
-        for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-        std::partial_sort(order.begin(), order.begin() + max_contact_updates, order.end(),
-                          [&](int a, int c) { return size[a] > size[c]; });
-        std::vector<std::pair<int, Mat3>> kept;
-        for (int i = 0; i < max_contact_updates; ++i) kept.push_back(changes[order[i]]);
-        changes.swap(kept);
-        if (bs.steps_since_refresh >= contact_refresh_min_steps) bs.needs_refresh = true;  // factorise them in next step
-      }
       for (const auto& [local, d] : changes)
         if (bs.contact_column[local] < 0 && !add_contact_columns(sim, b, local)) return false;
       const int m = 3 * static_cast<int>(changes.size());
