@@ -1272,12 +1272,19 @@ class Simulation {
   // histories committed, the ASI rule applied (integration points move for the next step), and the
   // forces the next step starts from.
   // A rigid body's elements are never evaluated (no forces, no history): nothing to commit or shift,
-  // and its forces are carried in the same pass over the nodes as the work (one pass less).
+  // and its forces are carried in the same pass over the nodes as the work (one pass less). The work
+  // is summed in this function's own loop: a function per node, not inlined, kept the sums in memory.
   void commit_body(int b, BodyStepSums& s) {
     auto& bs = systems_[b];
     for (int n : bs.nodes) {
-      add_step_work(6 * n, s);
-      if (bs.rigid) carry_forces(6 * n);
+      const int i = 6 * n;
+      const auto du = Du_.segment<6>(i);
+      s.external_work += 0.5 * du.dot(fext0_.segment<6>(i) + fext1_.segment<6>(i) - fgrav_.segment<6>(i) * 2.0);
+      s.contact_work += 0.5 * du.dot(fc0_.segment<6>(i) + fc1_.segment<6>(i));
+      if (opt_.mass_damping > 0)
+        s.damping_work -= 0.5 * opt_.mass_damping *
+                          du.dot((mass_.segment<6>(i).array() * (vn_.segment<6>(i) + v_.segment<6>(i)).array()).matrix());
+      if (bs.rigid) carry_forces(i);
     }
     if (!bs.rigid) {
       for (int e : bs.elements) std::swap(committed_[e], trial_[e]);
@@ -1285,15 +1292,6 @@ class Simulation {
       for (int n : bs.nodes) carry_forces(6 * n);
     }
     ++bs.steps_since_refresh;
-  }
-  // The work of the forces on the node whose first DOF is i over the increment (trapezoidal).
-  void add_step_work(int i, BodyStepSums& s) const {
-    const auto du = Du_.segment<6>(i);
-    s.external_work += 0.5 * du.dot(fext0_.segment<6>(i) + fext1_.segment<6>(i) - fgrav_.segment<6>(i) * 2.0);
-    s.contact_work += 0.5 * du.dot(fc0_.segment<6>(i) + fc1_.segment<6>(i));
-    if (opt_.mass_damping > 0)
-      s.damping_work -= 0.5 * opt_.mass_damping *
-                        du.dot((mass_.segment<6>(i).array() * (vn_.segment<6>(i) + v_.segment<6>(i)).array()).matrix());
   }
   // The forces the next step starts from, at the node whose first DOF is i.
   void carry_forces(int i) {
@@ -1674,10 +1672,12 @@ class Simulation {
         Eigen::Matrix<double, 3, 6> Ta, Tb;
         Ta << Mat3::Identity(), -detail::skew(p.point - centre[ia]);
         Tb << Mat3::Identity(), -detail::skew(p.point - centre[ib]);
-        A.template block<6, 6>(6 * ia, 6 * ia) += Ta.transpose() * kk * Ta;
-        A.template block<6, 6>(6 * ib, 6 * ib) += Tb.transpose() * kk * Tb;
-        A.template block<6, 6>(6 * ia, 6 * ib) -= Ta.transpose() * kk * Tb;
-        A.template block<6, 6>(6 * ib, 6 * ia) -= Tb.transpose() * kk * Ta;
+        // T^T k once per body, as the products T^T k T evaluated it (into a 6 x 3 before the right factor)
+        const Eigen::Matrix<double, 6, 3> TaK = Ta.transpose() * kk, TbK = Tb.transpose() * kk;
+        A.template block<6, 6>(6 * ia, 6 * ia) += TaK * Ta;
+        A.template block<6, 6>(6 * ib, 6 * ib) += TbK * Tb;
+        A.template block<6, 6>(6 * ia, 6 * ib) -= TaK * Tb;
+        A.template block<6, 6>(6 * ib, 6 * ia) -= TbK * Ta;
       }
     }
 
