@@ -82,6 +82,7 @@ struct BodySystem {
   bool rigid = false;                // solved as a rigid body (6 DOF)
   Vec3 rigid_c0 = Vec3::Zero(), rigid_dc = Vec3::Zero();  // centre at the step's start, its increment
   Mat3 rigid_Q = Mat3::Identity();   // rotation since the step's start
+  bool rigid_at_start = false;       // its nodes not moved since the step's start (centre rigid_c0)
   // Contact inside the implicit step: the effective-matrix terms of the body's contact nodes (local
   // node, 3 x 3 on its translations); the terms put into the factorisation (per local node, in the
   // factor's frame; the nodes that have one); and the columns K^-1 e of the factorised matrix for the
