@@ -87,7 +87,13 @@ TEST_CASE("every contact law's name goes through the reader and the writer", "[s
     const json written = to_json(s);
     CHECK(written["contact"]["law"] == name);
     CHECK(to_json(parse_scene_json(written, "laws.json")) == written);
-    if constexpr (R::default_implicit) CHECK(s.contact.implicit == *R::default_implicit);
+    // The law's default applies to a scene file and to a spec built in C++ alike (nothing set).
+    const ImplicitContact expected = R::default_implicit.value_or(ImplicitContact::rigid);
+    CHECK(implicit_contact(s.contact) == expected);
+    SceneSpec in_cpp;
+    in_cpp.contact.law = law_kind<R>;
+    CHECK(implicit_contact(in_cpp.contact) == expected);
+    CHECK(to_json(in_cpp)["contact"]["implicit"] == json_io::enum_name(detail::implicit_contact_names, expected));
     // stick_length is written and read only for laws that use it.
     CHECK(written["contact"].contains("stick_length") == R::own_stick_spring.empty());
     const std::string stick =

@@ -458,7 +458,7 @@ TEST_CASE("stiff law: stacked cabinets stand on each other, rigid and full, with
     j["items"][0]["fidelity"] = fidelity;
     j["outputs"]["folder"] = dir + "/out";
     const SceneSpec spec = parse_scene(write_json(dir + "/scene.json", j));
-    CHECK(spec.contact.implicit == ImplicitContact::all);  // stiff's default
+    CHECK(implicit_contact(spec.contact) == ImplicitContact::all);  // stiff's default
     const RunSummary sum = run_scene(spec, quiet(dir + "/out"));
     INFO(fidelity << ": " << sum.status << " " << sum.diagnosis);
     REQUIRE(sum.status == "completed");
@@ -639,6 +639,24 @@ TEST_CASE("final states: an item on a slippery floor under a strong pulse slides
     CHECK(furthest < -0.07);   // it slides up to the block (80 mm) ...
     CHECK(furthest > -0.11);   // ... which stops it: measured -0.084 m (free: -0.189 m)
     CHECK(s.items.at(0).tilt_deg < 5);
+    // The same box as an OFF file (extension in capitals): read by the OFF reader, the same run.
+    // Until 2026-11-26 a scene refused .off although the reader existed (issue 13).
+    {
+      std::ofstream off(dir + "/block.OFF");
+      off << "OFF\n8 6 0\n";
+      for (double z : {0.0, 1.0})
+        for (double y : {-0.5, 0.5})
+          for (double x : {-1.0, 1.0}) off << x << ' ' << y << ' ' << z << '\n';
+      off << "4 0 2 3 1\n4 4 5 7 6\n4 0 1 5 4\n4 2 6 7 3\n4 0 4 6 2\n4 1 3 7 5\n";
+    }
+    json j_off = j;
+    j_off["obstacles"][0]["file"] = "block.OFF";
+    const RunSummary s_off = run_scene(parse_scene(write_json(dir + "/block_off.json", j_off)), quiet(dir + "/block_off_out"));
+    REQUIRE(s_off.status == "completed");
+    const CsvTable markers_off = read_csv(dir + "/block_off_out/markers.csv");
+    const auto& x_off = markers_off.column("top_x");
+    REQUIRE(x_off.size() == x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) CHECK(x_off[i] == Approx(x[i]).margin(1e-9));
   }
   SECTION("stacked: the upper cabinet rests on the lower one, not the other way round") {
     const json j = {{"name", "stacked cabinets at rest"},
@@ -1025,14 +1043,22 @@ TEST_CASE("a run refuses a non-empty folder it did not write unless overwrite, a
   none.write_files = false;
   CHECK(run_scene(spec, none).status == "completed");
 
-  // --overwrite: the old results are removed first, the user's other files stay.
+  // --overwrite in a folder no run wrote: files named as outputs are the user's too (no run.json says a
+  // run wrote them), so it refuses, naming them, and removes nothing (until 2026-11-26 it removed them).
   RunOptions o = quiet(out);
   o.overwrite = true;
+  CHECK_THROWS_WITH(run_scene(spec, o), Catch::Contains("results folder '" + out + "'") &&
+                                            Catch::Contains("marker_old.png, vtu/room_99999.vtu") &&
+                                            Catch::Contains("move those files"));
+  CHECK(fs::exists(out + "/marker_old.png"));
+  CHECK(fs::exists(out + "/vtu/room_99999.vtu"));
+  CHECK_FALSE(fs::exists(out + "/run.json"));
+  // Without them, it writes beside the user's other files.
+  fs::remove(out + "/marker_old.png");
+  fs::remove(out + "/vtu/room_99999.vtu");
   REQUIRE(run_scene(spec, o).status == "completed");
   CHECK(fs::exists(out + "/notes.txt"));
   CHECK(fs::exists(out + "/vtu/mine.vtu"));
-  CHECK_FALSE(fs::exists(out + "/marker_old.png"));
-  CHECK_FALSE(fs::exists(out + "/vtu/room_99999.vtu"));
   CHECK(read_json(out + "/run.json").at("options").at("overwrite") == true);
   check_outputs(out, spec, false);
 

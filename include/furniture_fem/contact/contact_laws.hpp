@@ -14,6 +14,7 @@
 // See docs/contact/contact.md for the choices, the presets and how to write a new part or law.
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <concepts>
 #include <limits>
@@ -62,18 +63,37 @@ struct ContactParams {
   double k_hc = 0;        // N/m^1.5: Hunt-Crossley stiffness (HuntCrossley)
   double hc_damping = 0;  // s/m: Hunt-Crossley damping factor (HuntCrossley)
 
+  // Every field, named: validate() checks each and pair() combines each, so a new field is seen by both.
+  static constexpr auto named_fields() {
+    using F = std::pair<const char*, double ContactParams::*>;
+    return std::array{F{"alpha", &ContactParams::alpha},   F{"q", &ContactParams::q},
+                      F{"Dc", &ContactParams::Dc},         F{"mu", &ContactParams::mu},
+                      F{"mu_long", &ContactParams::mu_long}, F{"mu_short", &ContactParams::mu_short},
+                      F{"k_t", &ContactParams::k_t},       F{"c_t", &ContactParams::c_t},
+                      F{"v_reg", &ContactParams::v_reg},   F{"stick_length", &ContactParams::stick_length},
+                      F{"k_lin", &ContactParams::k_lin},   F{"c_lin", &ContactParams::c_lin},
+                      F{"k_hc", &ContactParams::k_hc},     F{"hc_damping", &ContactParams::hc_damping}};
+  }
+
   // Negative, NaN or infinite values, and q <= 0 (a force that jumps at first touch), throw
   // ModelError naming the field and the value.
   void validate() const {
-    const std::pair<const char*, double> fields[] = {
-        {"alpha", alpha}, {"q", q},         {"Dc", Dc},         {"mu", mu},         {"mu_long", mu_long},
-        {"mu_short", mu_short}, {"k_t", k_t}, {"c_t", c_t},     {"v_reg", v_reg},   {"k_lin", k_lin},
-        {"c_lin", c_lin}, {"k_hc", k_hc},   {"hc_damping", hc_damping}, {"stick_length", stick_length}};
-    for (const auto& [name, value] : fields)
+    for (const auto& [name, field] : named_fields()) {
+      const double value = this->*field;
       if (!std::isfinite(value) || value < 0)
         throw ModelError(std::string("ContactParams: ") + name + " must be finite and non-negative (got " +
                          detail::fmt(value) + ")");
+    }
     if (!(q > 0)) throw ModelError("ContactParams: q must be positive (got " + detail::fmt(q) + ")");
+  }
+
+  // Two items in contact with each other: every field the mean of theirs, so the pair does not depend
+  // on which item comes first (docs/contact/contact.md, "Pair-level helpers"). Equal values are kept to
+  // the bit (0.5 (x + x) = x): items that share a value, as every scene's q, mu and v_reg, keep it.
+  static ContactParams pair(const ContactParams& a, const ContactParams& b) {
+    ContactParams p;
+    for (const auto& [name, field] : named_fields()) p.*field = 0.5 * (a.*field + b.*field);
+    return p;
   }
 
   // The paper's rules (Table 4): alpha = the item's weight (given in kgf, stored in N), q = 1,

@@ -325,19 +325,16 @@ class RoomContact {
       return {};
     }
     const int body = view.model.node(n).body;
-    ContactKinematics k;
-    k.l = l;  // behind the plane: g > 1 and the penalty keeps growing
-    k.L = half_width_[n];
-    k.n = pl.normal;
-    k.v = view.v.template segment<3>(6 * n);
-    k.long_axis = long_axis(body, view);
-    k.dt = view.dt;
     ContactParams prm = pl.is_wall ? bodies_[body].wall : bodies_[body].floor;
     if (!pl.is_wall && caster_[n] && bodies_[body].caster_mu >= 0) {
       prm.mu = prm.mu_long = prm.mu_short = bodies_[body].caster_mu;
     }
     if (share != 1.0) prm = scaled_penalty(prm, share);
-    return law_.force(k, prm, state);
+    // The tested node-against-plane evaluation (contact_laws.hpp), on this plane's distance; the
+    // plane's own extent test above decides whether a wall panel is reached.
+    const NodeOnPlane node{x, view.v.template segment<3>(6 * n), half_width_[n], view.dt, long_axis(body, view),
+                           Vec3::Zero()};
+    return detail::node_against(law_, node, PointPlaneDistance{l, x - l * pl.normal, pl.normal}, prm, state).force;
   }
 
   // A contact's status: 0 apart, 1 pushing (or any force, for a law that may pull), 2 touching with
@@ -486,7 +483,7 @@ class RoomContact {
     return sp;
   }
   ContactParams pair_params(const Model& model, int ea, int eb) const {
-    return mean_params(bodies_[model.elements()[ea].body].item, bodies_[model.elements()[eb].body].item);
+    return ContactParams::pair(bodies_[model.elements()[ea].body].item, bodies_[model.elements()[eb].body].item);
   }
   // Only laws with a history (a tangential spring) keep per-pair state across steps.
   ContactState committed_pair_state(int ea, int eb) const {
@@ -512,15 +509,11 @@ class RoomContact {
         const Vec3 d = view.x[n] - cp->p_WM;
         const double l = d.norm();
         if (l > L || l < 1e-12) continue;
-        ContactKinematics k;
-        k.l = l;
-        k.L = L;
-        k.n = d / l;
-        k.v = view.v.template segment<3>(6 * n);
-        k.long_axis = Vec3::Zero();
-        k.dt = view.dt;
+        // The mesh's closest point as a plane through it, normal towards the node.
+        const NodeOnPlane node{view.x[n], view.v.template segment<3>(6 * n), L, view.dt, Vec3::Zero(), Vec3::Zero()};
         ContactState st;
-        const ContactForce cf = law_.force(k, bodies_[body].wall, st);
+        const ContactForce cf =
+            detail::node_against(law_, node, PointPlaneDistance{l, cp->p_WM, Vec3(d / l)}, bodies_[body].wall, st).force;
         f.template segment<3>(6 * n) += cf.on_a;
         add_pair_force(body, obstacle_id, cf.on_a);
         ++active_;
@@ -528,18 +521,6 @@ class RoomContact {
     }
   }
 
-  static ContactParams mean_params(const ContactParams& a, const ContactParams& b) {
-    ContactParams p = a;
-    p.alpha = 0.5 * (a.alpha + b.alpha);
-    p.Dc = 0.5 * (a.Dc + b.Dc);
-    p.k_lin = 0.5 * (a.k_lin + b.k_lin);
-    p.c_lin = 0.5 * (a.c_lin + b.c_lin);
-    p.k_t = 0.5 * (a.k_t + b.k_t);
-    p.c_t = 0.5 * (a.c_t + b.c_t);
-    p.k_hc = 0.5 * (a.k_hc + b.k_hc);
-    p.hc_damping = 0.5 * (a.hc_damping + b.hc_damping);
-    return p;
-  }
   static long long key(int a, int b) { return (static_cast<long long>(a) << 32) | static_cast<unsigned>(b); }
 
   Law law_;

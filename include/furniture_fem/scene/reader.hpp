@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -272,11 +273,12 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
     o.allow_only({"name", "file", "position", "yaw_deg", "scale"});
     ObstacleSpec ob;
     ob.name = o.string("name", "obstacle_" + std::to_string(s.obstacles.size() + 1));
-    if (!o.has("file")) o.fail(o.path("file"), "required: an STL or OBJ mesh file");
+    if (!o.has("file")) o.fail(o.path("file"), "required: an STL, OBJ or OFF mesh file");
     ob.file = *o.optional_string("file");
-    const std::string ext = std::filesystem::path(ob.file).extension().string();
-    if (ext != ".stl" && ext != ".STL" && ext != ".obj" && ext != ".OBJ")
-      o.fail(o.path("file"), "expected an .stl or .obj mesh file, got \"" + ob.file + "\"");
+    std::string ext = std::filesystem::path(ob.file).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    if (ext != ".stl" && ext != ".obj" && ext != ".off")
+      o.fail(o.path("file"), "expected an .stl, .obj or .off mesh file, got \"" + ob.file + "\"");
     ob.position = o.vec3("position", ob.position);
     ob.yaw_deg = o.number("yaw_deg", 0);
     o.in_range("yaw_deg", -360, 360);
@@ -304,8 +306,9 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
     c.allow_only({"law", "implicit", "velocity_regularisation", "stick_length", "floor", "wall", "item"});
     s.contact.law = c.enumeration("law", detail::law_names, s.contact.law, "contact law");
     const SceneLawInfo& law = scene_law(s.contact.law);
-    if (law.default_implicit) s.contact.implicit = *law.default_implicit;
-    s.contact.implicit = c.enumeration("implicit", detail::implicit_contact_names, s.contact.implicit, "implicit contact");
+    if (c.has("implicit"))
+      s.contact.implicit = c.enumeration("implicit", detail::implicit_contact_names, implicit_contact(s.contact),
+                                         "implicit contact");
     s.contact.velocity_regularisation = c.number("velocity_regularisation", s.contact.velocity_regularisation);
     c.positive("velocity_regularisation");
     if (c.has("stick_length") && !law.own_stick_spring.empty())

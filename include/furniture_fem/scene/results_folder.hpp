@@ -4,8 +4,9 @@
 //
 //   results_file(relative)                   true for a file name a run writes (run.json, markers.csv,
 //                                            vtu/room_12.vtu, marker_*.png, ... and their .tmp)
-//   check_results_folder(dir, overwrite)     refuses a non-empty folder this program did not write,
-//                                            unless overwrite; changes nothing on disk
+//   check_results_folder(dir, overwrite)     refuses a non-empty folder this program did not write
+//                                            (with overwrite: one holding a file named as an output);
+//                                            changes nothing on disk
 //   prepare_results_folder(dir, overwrite)   checks, creates the folder, removes the old results
 //   iso8601_utc(time)                        "2026-11-26T00:33:42.123Z"
 //   write_json_atomically(path, json)        "<path>.tmp", then renamed
@@ -16,7 +17,9 @@
 // run writes (results_file()), never any other file. A folder whose run.json says a run is still
 // "running" is refused (two runs writing into one folder would interleave their files; a run killed
 // with SIGKILL leaves that status behind). RunOptions::overwrite (furniture_quake --overwrite) lifts
-// both refusals; the old results are removed in the same way and the user's other files are kept.
+// both refusals: a "running" folder's results are removed in the same way; into a folder no run wrote
+// the run writes beside the user's files, and refuses if one of them has an output's name (it would be
+// replaced or removed).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -129,19 +132,27 @@ inline void check_results_folder(const std::string& dir, bool overwrite) {
   if (!fs::exists(p, ec)) return;  // new: created by the run
   if (!fs::is_directory(p, ec)) refuse("exists and is not a folder");
   if (fs::is_empty(p, ec)) return;
-  if (overwrite) return;
   const nlohmann::json record = detail::read_run_record(p);
   if (record.is_object()) {
-    if (record.value("status", "") == "running")
+    if (!overwrite && record.value("status", "") == "running")
       refuse("run.json says a run started " + record.value("start_utc", std::string("at an unknown time")) +
              " is still writing there (status \"running\"); if that run is no longer alive (killed), pass "
              "--overwrite (RunOptions::overwrite) to remove its results");
     return;
   }
   if (detail::legacy_results(p)) return;
-  refuse("is not empty and was not written by furniture_fem (it has no run.json); choose a new or empty folder "
-         "(--out DIR), or pass --overwrite (RunOptions::overwrite) to remove the furniture_fem results in it "
-         "(only files named as a run names its outputs; other files are kept)");
+  // A folder no run wrote: its files are the user's, even those named like a run's outputs (a user's own
+  // energy.csv). --overwrite writes beside them, and refuses rather than remove or replace one.
+  if (!overwrite)
+    refuse("is not empty and was not written by furniture_fem (it has no run.json); choose a new or empty "
+           "folder (--out DIR), or pass --overwrite (RunOptions::overwrite) to write beside its files");
+  const std::vector<std::string> clash = detail::results_files_in(p);
+  if (clash.empty()) return;
+  std::string names;
+  for (std::size_t i = 0; i < clash.size() && i < 5; ++i) names += (i ? ", " : "") + clash[i];
+  if (clash.size() > 5) names += ", ... (" + std::to_string(clash.size()) + " in all)";
+  refuse("was not written by furniture_fem (it has no run.json) and has files named as a run's outputs (" + names +
+         "); --overwrite removes only a run's own results: move those files or choose another folder (--out DIR)");
 }
 
 // Checks (check_results_folder), creates the folder, and removes the old results in it: only the files

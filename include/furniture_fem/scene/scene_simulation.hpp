@@ -271,8 +271,8 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
   // there (a stick spring applied explicitly would be unstable). Two rigid implicit items also have
   // their pairs inside the step (solved together); every other pair is explicit.
   const auto implicit_for = [&](const auto& it) {
-    return s.contact.implicit == ImplicitContact::all ||
-           (s.contact.implicit == ImplicitContact::rigid && item_is_rigid(s, it));
+    const ImplicitContact implicit = implicit_contact(s.contact);
+    return implicit == ImplicitContact::all || (implicit == ImplicitContact::rigid && item_is_rigid(s, it));
   };
   for (const auto& it : items) {
     BodyContact bc;

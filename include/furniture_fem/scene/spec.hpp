@@ -43,7 +43,7 @@ inline std::vector<WallSpec> default_walls(const TableSpec& t = {}) {
           WallSpec{"wall_plus_x", Vec3(0.5 * t.size_x, 0, t.floor_z), Vec3(-1, 0, 0), 2.5, t.size_y}};
 }
 
-// A rigid obstacle given by a triangle mesh file (STL or OBJ), placed like an item.
+// A rigid obstacle given by a triangle mesh file (STL, OBJ or OFF), placed like an item.
 struct ObstacleSpec {
   std::string name;
   std::string file;
@@ -146,7 +146,9 @@ enum class ImplicitContact { none, rigid, all };
 
 struct ContactSpec {
   ContactLawKind law;  // the list's first law, "paper", unless set
-  ImplicitContact implicit = ImplicitContact::rigid;
+  // Unset: the law's default (`stiff`: all), else rigid; read it through implicit_contact(ContactSpec).
+  // Optional so that a spec built in C++ gets the same default as a scene file naming the law.
+  std::optional<ImplicitContact> implicit;
   double velocity_regularisation = 1e-3;  // m/s: v/|v| is smoothed below this speed
   // m: elastic range of the stick spring of Coulomb friction (holds still below mu N); 0: friction
   // regularised by velocity_regularisation instead (it creeps). Not read by stick_slip (its own spring);

@@ -88,6 +88,13 @@ inline const SceneLawInfo& scene_law(ContactLawKind kind) {
   return scene_law_infos[kind.index];
 }
 
+// Which items' floor and wall contact is inside the implicit step: the spec's choice, else its law's
+// default, else rigid items only.
+inline ImplicitContact implicit_contact(const ContactSpec& c) {
+  if (c.implicit) return *c.implicit;
+  return scene_law(c.law).default_implicit.value_or(ImplicitContact::rigid);
+}
+
 // Calls f.template operator()<R>() with the record of `kind`; false when the list has no such law.
 template <class F>
 bool visit_scene_law(ContactLawKind kind, F&& f) {
