@@ -707,6 +707,26 @@ struct NodePlaneForces {
 };
 
 namespace detail {
+// The kinematics of a node at signed distance l from a plane of unit normal n.
+inline ContactKinematics node_kinematics(const NodeOnPlane& node, double l, const Vec3& n) {
+  ContactKinematics k;
+  k.l = l;  // negative behind the plane: g > 1, the penalty keeps growing
+  k.L = node.L;
+  k.n = n;
+  k.v = node.v_WN - node.v_W_obstacle;
+  k.long_axis = node.long_axis;
+  k.dt = node.dt;
+  return k;
+}
+
+// The law's force on a node within reach of the plane (l <= node.L, checked by the caller): what
+// RoomContact evaluates per node and plane, without the foot point and the moment (its hot path).
+template <class Law>
+ContactForce node_force(const Law& law, const NodeOnPlane& node, double l, const Vec3& n, const ContactParams& params,
+                        ContactState& state) {
+  return law.force(node_kinematics(node, l, n), params, state);
+}
+
 template <class Law>
 NodePlaneForces node_against(const Law& law, const NodeOnPlane& node, const PointPlaneDistance& d,
                              const ContactParams& params, ContactState& state) {
@@ -716,13 +736,7 @@ NodePlaneForces node_against(const Law& law, const NodeOnPlane& node, const Poin
     state = ContactState{};
     return out;
   }
-  ContactKinematics& k = out.kinematics;
-  k.l = d.signed_distance;  // negative behind the plane: g > 1, the penalty keeps growing
-  k.L = node.L;
-  k.n = d.n_W;
-  k.v = node.v_WN - node.v_W_obstacle;
-  k.long_axis = node.long_axis;
-  k.dt = node.dt;
+  const ContactKinematics& k = out.kinematics = node_kinematics(node, d.signed_distance, d.n_W);
   out.force = law.force(k, params, state);
   out.in_contact = out.force.in_contact;
   out.on_node = out.force.on_a;

@@ -334,7 +334,7 @@ class RoomContact {
     // plane's own extent test above decides whether a wall panel is reached.
     const NodeOnPlane node{x, view.v.template segment<3>(6 * n), half_width_[n], view.dt, long_axis(body, view),
                            Vec3::Zero()};
-    return detail::node_against(law_, node, PointPlaneDistance{l, x - l * pl.normal, pl.normal}, prm, state).force;
+    return detail::node_force(law_, node, l, pl.normal, prm, state);
   }
 
   // A contact's status: 0 apart, 1 pushing (or any force, for a law that may pull), 2 touching with
@@ -513,7 +513,7 @@ class RoomContact {
         const NodeOnPlane node{view.x[n], view.v.template segment<3>(6 * n), L, view.dt, Vec3::Zero(), Vec3::Zero()};
         ContactState st;
         const ContactForce cf =
-            detail::node_against(law_, node, PointPlaneDistance{l, cp->p_WM, Vec3(d / l)}, bodies_[body].wall, st).force;
+            detail::node_force(law_, node, l, Vec3(d / l), bodies_[body].wall, st);
         f.template segment<3>(6 * n) += cf.on_a;
         add_pair_force(body, obstacle_id, cf.on_a);
         ++active_;
