@@ -22,6 +22,20 @@ namespace {
 constexpr double pi = std::numbers::pi;
 const Newmark paper_newmark = Newmark::paper();
 
+// Beam A along X at z = 40 mm, offset in Y; beam B at 60 degrees in the X-Y plane through
+// (0.2, 0, 0): their centre lines cross 40 mm apart, away from both midpoints. Bodies A (0), B (1).
+Model crossing_beams() {
+  Model m;
+  const int sec = m.add_section(tube()), mat = m.add_material(elastic_steel());
+  const int A = m.add_body("A"), B = m.add_body("B");
+  MemberOptions mo;
+  mo.elements = 20;
+  m.add_member("A", m.add_node({-0.5, 0.1, 0.04}, A), m.add_node({0.5, 0.1, 0.04}, A), sec, mat, mo);
+  const Vec3 d(std::cos(pi / 3), std::sin(pi / 3), 0), c(0.2, 0, 0);
+  m.add_member("B", m.add_node(c - 0.5 * d, B), m.add_node(c + 0.5 * d, B), sec, mat, mo);
+  return m;
+}
+
 double restitution_closed_form(double zeta) { return std::exp(-pi * zeta / std::sqrt(1 - zeta * zeta)); }
 
 // Exit speed of m x'' + c x' + k x = m g (x: overlap, positive into the floor) entered at x = 0 with
@@ -262,14 +276,8 @@ TEST_CASE("crossing beams: contact forces equal and opposite, no net torque, mom
   // simulation's contact policy at the current state every 10 steps.
   auto run = [](const auto& law, const char* name) {
     using Law = std::decay_t<decltype(law)>;
-    Model m;
-    const int sec = m.add_section(tube()), mat = m.add_material(elastic_steel());
-    const int A = m.add_body("A"), B = m.add_body("B");
-    MemberOptions mo;
-    mo.elements = 20;
-    m.add_member("A", m.add_node({-0.5, 0.1, 0.04}, A), m.add_node({0.5, 0.1, 0.04}, A), sec, mat, mo);
-    const Vec3 d(std::cos(pi / 3), std::sin(pi / 3), 0), c(0.2, 0, 0);
-    m.add_member("B", m.add_node(c - 0.5 * d, B), m.add_node(c + 0.5 * d, B), sec, mat, mo);
+    const Model m = crossing_beams();
+    const int A = 0, B = 1;  // the bodies in the order crossing_beams() adds them
     ContactParams p = paper_params(m.body_mass(A), 0.3, 0.01);
     set_stick_spring(p, m.body_mass(A), 1, 100, 0.5);
     SimulationOptions o = options_dt(1e-4);
@@ -324,14 +332,8 @@ TEST_CASE("crossing beams: contact forces equal and opposite, no net torque, mom
 // only the pair acts, so the two runs must agree to the bit (the mean is commutative).
 TEST_CASE("item-item parameters: the pair does not depend on which item comes first", "[contact_dynamics][pair]") {
   auto run = [](const ContactParams& on_a, const ContactParams& on_b) {
-    Model m;
-    const int sec = m.add_section(tube()), mat = m.add_material(elastic_steel());
-    const int A = m.add_body("A"), B = m.add_body("B");
-    MemberOptions mo;
-    mo.elements = 20;
-    m.add_member("A", m.add_node({-0.5, 0.1, 0.04}, A), m.add_node({0.5, 0.1, 0.04}, A), sec, mat, mo);
-    const Vec3 d(std::cos(pi / 3), std::sin(pi / 3), 0), c(0.2, 0, 0);
-    m.add_member("B", m.add_node(c - 0.5 * d, B), m.add_node(c + 0.5 * d, B), sec, mat, mo);
+    const Model m = crossing_beams();
+    const int A = 0;  // the first body crossing_beams() adds
     SimulationOptions o = options_dt(1e-4);
     o.gravity.setZero();
     Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact<PaperLaw>> sim(
