@@ -4,7 +4,8 @@
     python3 paper/studies/summarise.py STUDY_DIR [STUDY_DIR ...] [--out paper/results/distribution.md]
 
 Each STUDY_DIR is the results folder of one of paper/studies/config3_<case>_30.json, run with
-`furniture_study`; the case is read from its study.json name. For every statement of the paper that
+`furniture_study` (or its committed copy, paper/results/study_config3_<case>/: only its
+realisations.csv and summary.json are read); the case is read from summary.json's study name. For every statement of the paper that
 a final state can decide (paper/RESULTS.md, "Configuration 3"), it counts the realisations in which the
 statement holds, gives the fraction with its Wilson 95 % interval, and says whether the committed
 single run (paper/results/config3_<case>/final_state.json) has it. Continuous outcomes (slides, largest
@@ -12,6 +13,7 @@ tilts) get their median, 16 % and 84 % quantiles and the committed run's rank am
 Standard library only.
 """
 import argparse
+import csv
 import json
 import math
 import os
@@ -63,13 +65,25 @@ def quantile(xs, q):  # type 7, as the study's distributions.csv
 
 
 def load_study(folder):
-    study = json.load(open(os.path.join(folder, "study.json")))
-    case = study["name"].replace("config3_", "").rsplit("_", 1)[0]
-    runs = []
-    for f in sorted(os.listdir(os.path.join(folder, "runs"))):
-        if f.endswith(".json"):
-            runs.append(json.load(open(os.path.join(folder, "runs", f))))
-    return case, study, runs
+    """The case and, per completed realisation, its bodies' outcomes from realisations.csv."""
+    summary = json.load(open(os.path.join(folder, "summary.json")))
+    name = summary.get("study", {}).get("name") if isinstance(summary.get("study"), dict) else summary.get("study")
+    case = name.replace("config3_", "").rsplit("_", 1)[0]
+    rows = list(csv.DictReader(open(os.path.join(folder, "realisations.csv"))))
+    done = []
+    for r in rows:
+        if r["status"] != "completed":
+            continue
+        bodies = {}
+        for col, value in r.items():
+            if "." not in col:
+                continue
+            body, key = col.rsplit(".", 1)
+            if key in ("state", "slide_m", "max_tilt_deg", "resting_on"):
+                b = bodies.setdefault(body, {})
+                b[{"slide_m": "slide"}.get(key, key)] = value if key in ("state", "resting_on") else float(value)
+        done.append(bodies)
+    return case, summary, rows, done
 
 
 def committed(case):
@@ -96,11 +110,9 @@ def main():
              "every other setting are the committed scenes'. Fraction: realisations in which the statement holds,",
              "with its Wilson 95 % interval. Committed run: paper/results/config3_<case>/final_state.json.", ""]
     for folder in a.studies:
-        case, study, runs = load_study(folder)
-        done = [r for r in runs if r["status"] == "completed"]
-        bodies = [{b["name"]: b for b in r["bodies"]} for r in done]
+        case, summary, runs, bodies = load_study(folder)
         one = committed(case)
-        lines += ["## " + case + " (" + str(len(done)) + " of " + str(len(runs)) + " realisations completed)", "",
+        lines += ["## " + case + " (" + str(len(bodies)) + " of " + str(len(runs)) + " realisations completed)", "",
                   "| statement (RESULTS.md row) | holds in | fraction [95 % interval] | committed run |",
                   "|---|---|---|---|"]
         for c, text, row, test in STATEMENTS:
@@ -123,9 +135,8 @@ def main():
             lines.append("| %s %s | %.3g | %.3g - %.3g | %.3g - %.3g | %s |" % (
                 name, key.replace("_deg", ""), quantile(xs, 0.5), quantile(xs, 0.16), quantile(xs, 0.84),
                 min(xs), max(xs), mine))
-        wall = [r["wall_seconds"] for r in runs]
-        lines += ["", "Wall time per realisation: median %.0f s (one worker, the machine's other core busy)." %
-                  quantile(wall, 0.5), ""]
+        lines += ["", "Wall time per realisation: mean %.0f s (%s worker(s); summary.json)." %
+                  (summary.get("mean_run_seconds", float("nan")), summary.get("workers", "?")), ""]
     with open(a.out, "w") as f:
         f.write("\n".join(lines))
     print("wrote " + a.out)

@@ -65,23 +65,43 @@ TEST_CASE("a block has the solid box's mass, centre of gravity and inertia tenso
   }
 }
 
-TEST_CASE("a block's bottom nodes sit at floor-contact onset and its envelope is the box", "[furniture][block]") {
+TEST_CASE("a block's bottom nodes sit at floor-contact onset, on the lines from its centre of gravity to its edges",
+          "[furniture][block]") {
   // Floor contact acts within half the member width of a node (5 mm for the 10 mm edge tubes): the
-  // bottom centre lines at z = 5 mm put the box's bottom face on the floor, its sides on W x D x H.
-  Model model;
-  const ItemInfo info = build_block(model, {}, 0.5, 0.3, 0.4, block_options(10.0));
-  double zmin = 1e9;
-  Vec3 lo = Vec3::Constant(1e9), hi = Vec3::Constant(-1e9);
-  for (int n : model.body(info.body).nodes) {
-    zmin = std::min(zmin, model.node(n).X.z());
-    lo = lo.cwiseMin(model.node(n).X);
-    hi = hi.cwiseMax(model.node(n).X);
+  // bottom centre lines at z = 5 mm put the box's bottom face on the floor. The top corners sit 5 mm
+  // inside the faces; the bottom corners where the lines from the centre of gravity (0, 0, h) to the
+  // box's bottom edges (+-W/2, +-D/2, 0) reach z = 5 mm, so that the pivots' lever arms have the box's
+  // ratio b/h (the tipping threshold: tests/scene "a block tips at g b/h"). Exact geometry: 1e-12 m.
+  for (const auto cog_h : {std::optional<double>{}, std::optional<double>{0.15}}) {
+    const double W = 0.5, D = 0.3, H = 0.4, c = 0.005, h = cog_h.value_or(0.5 * H);
+    Model model;
+    const ItemInfo info = build_block(model, {}, W, D, H, block_options(10.0, cog_h));
+    INFO("cog_h " << h);
+    double zmin = 1e9;
+    Vec3 lo = Vec3::Constant(1e9), hi = Vec3::Constant(-1e9);
+    for (int n : model.body(info.body).nodes) {
+      zmin = std::min(zmin, model.node(n).X.z());
+      if (model.node(n).X.z() > H - c - 1e-9) {
+        lo = lo.cwiseMin(model.node(n).X);
+        hi = hi.cwiseMax(model.node(n).X);
+      }
+    }
+    CHECK(zmin == Approx(c).epsilon(1e-12));
+    CHECK((hi - lo - Vec3(W - 2 * c, D - 2 * c, 0)).norm() < 1e-12);  // the top face's corners
+    REQUIRE(info.bottom_nodes.size() >= 4);
+    int corners = 0;
+    for (int n : info.bottom_nodes) {
+      const Vec3 X = model.node(n).X;
+      CHECK(X.z() == Approx(c).epsilon(1e-12));
+      // Corner: on the line from (0, 0, h) to (+-W/2, +-D/2, 0) at height c.
+      const double s = (h - c) / h;
+      if (std::abs(std::abs(X.x()) - 0.5 * W * s) < 1e-12 && std::abs(std::abs(X.y()) - 0.5 * D * s) < 1e-12) ++corners;
+      CHECK(std::abs(X.x()) <= 0.5 * W * s + 1e-12);
+      CHECK(std::abs(X.y()) <= 0.5 * D * s + 1e-12);
+    }
+    CHECK(corners == 4);
+    for (int e : model.body(info.body).elements) CHECK(0.5 * model.section_of(e).contact_width() == Approx(c));
   }
-  CHECK(zmin == Approx(0.005).epsilon(1e-12));
-  CHECK((hi - lo - Vec3(0.49, 0.29, 0.39)).norm() < 1e-12);
-  REQUIRE(info.bottom_nodes.size() >= 4);
-  for (int n : info.bottom_nodes) CHECK(model.node(n).X.z() == Approx(0.005).epsilon(1e-12));
-  for (int e : model.body(info.body).elements) CHECK(0.5 * model.section_of(e).contact_width() == Approx(0.005));
 }
 
 TEST_CASE("a block refuses what a rigid solid box cannot take, naming the item", "[furniture][block]") {
@@ -103,6 +123,9 @@ TEST_CASE("a block refuses what a rigid solid box cannot take, naming the item",
   CHECK_THAT(build_error(o), Catch::Contains("panel_spacing and grid_scale do not apply"));
   CHECK_THAT(build_error(block_options(10.0, 0.002)), Catch::Contains("cog_h must lie within the frame") &&
                                                           Catch::Contains("got 0.002"));
+  // The bottom corners close in by c/h: below h = 2c = 10 mm the base would shrink past half the box.
+  CHECK_THAT(build_error(block_options(10.0, 0.009)), Catch::Contains("[0.01, "));
+  CHECK(build_error(block_options(10.0, 0.01)) == "no error");
   CHECK_THAT(build_error(block_options(-1.0)), Catch::Contains("mass_kg must be positive"));
 }
 

@@ -32,22 +32,31 @@ inline std::string block_option_problem(const BuildOptions& o) {
 }
 
 // Height of the hub (item frame) that puts the body's centre of gravity at h: the frame's edges
-// (mass m_e at H/2) and the spokes from the hub to the bottom corners (mass mu s each, at mid length)
-// move it; solved by fixed-point iteration (the frame is light: it converges in a few steps).
-inline double block_hub_height(double M, double h, double H, double m_e, double mu, double half_diag2, double c) {
+// (mass m_e, centroid at z_e) and the spokes from the hub to the bottom corners (mass mu s each, at mid
+// length) move it; solved by fixed-point iteration (the frame is light: it converges in a few steps).
+inline double block_hub_height(double M, double h, double z_e, double m_e, double mu, double half_diag2, double c) {
   double z = h;
   for (int k = 0; k < 50; ++k) {
     const double m_s = 4 * mu * std::sqrt(half_diag2 + (z - c) * (z - c));
-    z = (M * h - m_e * 0.5 * H - m_s * 0.5 * c) / (M - m_e - 0.5 * m_s);
+    z = (M * h - m_e * z_e - m_s * 0.5 * c) / (M - m_e - 0.5 * m_s);
   }
   return z;
 }
+
+// Where a block's bottom corners go. Floor contact acts at the nodes, whose centre lines sit c above
+// the floor, so a block tips about its bottom nodes, not about the box's edges. Each bottom corner is
+// put where the line from the centre of gravity (height h) to the box's bottom edge crosses the height
+// c: a fraction 1 - c/h of the box's half width and depth. The lever arms of weight and table
+// acceleration about that pivot then have the box's ratio b/h, so the block tips at g b/h exactly (with
+// the corners c inside the faces it tipped at g (b - c)/(h - c): 4 % low for a 0.2 x 1 m block).
+inline double block_bottom_scale(double h, double c) { return 1.0 - c / h; }
 
 }  // namespace detail
 
 // A solid uniform box W x D x H of mass mass_kg (required), its centre of gravity on its vertical axis at
 // cog_h (default H/2), to be solved as a rigid body. Modelled as a light frame of its 12 edges (10 mm
-// tubes whose centre lines sit 5 mm inside the faces: the contact geometry) with 4 spokes from a hub
+// tubes, the contact geometry: the top corners 5 mm inside the faces, the bottom ones 5 mm above the base
+// on the lines from the centre of gravity to the box's bottom edges) with 4 spokes from a hub
 // node to the bottom corners; the frame carries 1 % of the mass, the hub the rest and the principal
 // inertia that makes the body's inertia tensor about its centre of gravity the solid box's,
 // M/12 diag(D^2 + H^2, W^2 + H^2, W^2 + D^2) in the item's axes. Marker "cog": the hub.
@@ -60,8 +69,9 @@ inline ItemInfo build_block(Model& model, const Placement& placement, double W, 
   if (const std::string why = detail::block_option_problem(opts); !why.empty()) throw ModelError(who + ": " + why);
   const double M = *opts.mass_kg, c = 0.5 * detail::block_edge_width;
   const double h = opts.cog_h.value_or(0.5 * H);
-  if (!(h >= c && h <= H - c))
-    throw ModelError(who + ": cog_h must lie within the frame, in [" + detail::fmt(c) + ", " + detail::fmt(H - c) +
+  // The bottom corners close in by c/h (block_bottom_scale): at h = 2c they sit at half the box.
+  if (!(h >= 2 * c && h <= H - c))
+    throw ModelError(who + ": cog_h must lie within the frame, in [" + detail::fmt(2 * c) + ", " + detail::fmt(H - c) +
                      "] m (got " + detail::fmt(h) + ")");
   ItemInfo info;
   info.name = name;
@@ -72,18 +82,25 @@ inline ItemInfo build_block(Model& model, const Placement& placement, double W, 
   info.size = {W, D, H};
   info.fidelity = Fidelity::rigid;  // "auto" too: there is nothing else to choose
 
-  // Frame: corners, edges, hub and spokes, with a line mass that gives it its share of the mass.
+  // Frame: corners, edges, hub and spokes, with a line mass that gives it its share of the mass. The
+  // top corners sit c inside the faces; the bottom ones on the lines from the centre of gravity to the
+  // box's bottom edges (block_bottom_scale), so the posts lean by a fraction of a degree.
   const double x = 0.5 * W - c, y = 0.5 * D - c, z0 = c, z1 = H - c;
-  const double half_diag2 = x * x + y * y, edges = 8 * x + 8 * y + 4 * (z1 - z0);
+  const double s = detail::block_bottom_scale(h, c), xb = 0.5 * W * s, yb = 0.5 * D * s;
+  const double bottom_len = 4 * (xb + yb), top_len = 4 * (x + y);
+  const double post_len = 4 * std::sqrt((x - xb) * (x - xb) + (y - yb) * (y - yb) + (z1 - z0) * (z1 - z0));
+  const double half_diag2 = xb * xb + yb * yb, edges = bottom_len + top_len + post_len;
+  const double z_edges = (bottom_len * z0 + top_len * z1 + post_len * 0.5 * (z0 + z1)) / edges;
   const double mu = detail::block_frame_mass_share * M / (edges + 4 * std::sqrt(half_diag2 + (h - c) * (h - c)));
-  const double z_hub = detail::block_hub_height(M, h, H, mu * edges, mu, half_diag2, c);
+  const double z_hub = detail::block_hub_height(M, h, z_edges, mu * edges, mu, half_diag2, c);
   const auto node = [&](double lx, double ly, double lz) { return model.add_node(info.to_world({lx, ly, lz}), info.body); };
   const std::array<std::pair<const char*, std::array<double, 2>>, 4> corners{
-      {{"front_left", {-x, -y}}, {"front_right", {x, -y}}, {"back_right", {x, y}}, {"back_left", {-x, y}}}};
+      {{"front_left", {-1, -1}}, {"front_right", {1, -1}}, {"back_right", {1, 1}}, {"back_left", {-1, 1}}}};
   std::array<int, 4> bottom{}, top{};
   for (int k = 0; k < 4; ++k) {
-    bottom[k] = node(corners[k].second[0], corners[k].second[1], z0);
-    top[k] = node(corners[k].second[0], corners[k].second[1], z1);
+    const auto [sx, sy] = corners[k].second;
+    bottom[k] = node(sx * xb, sy * yb, z0);
+    top[k] = node(sx * x, sy * y, z1);
   }
   const int hub = node(0, 0, z_hub);
   const int section = detail::find_or_add_section(
