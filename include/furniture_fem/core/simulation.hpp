@@ -195,21 +195,7 @@ class Simulation {
  public:
   using State = typename Element::State;
 
-  Simulation(const Model& model, Integrator integrator = {}, SimulationOptions options = {}, Contact contact = {})
-      : model_(model), integrator_(integrator), opt_(options), coef_(integrator.coefficients()),
-        contact_(std::move(contact)) {
-    model_.validate();
-    if (!(opt_.dt >= SimulationOptions::min_dt) || !std::isfinite(opt_.dt))
-      throw ModelError("simulation: dt must be finite and at least " + detail::fmt(SimulationOptions::min_dt) +
-                       " s (got " + detail::fmt(opt_.dt) + ")");
-    if constexpr (Element::needs_pairs) {
-      for (int e = 0; e < model_.num_elements(); ++e)
-        if (model_.elements()[e].slot == PairSlot::none)
-          throw ModelError(model_.describe_element(e) + ": the " + std::string(Element::name) +
-                           " element needs members split into pairs (MemberOptions::pairs)");
-    }
-    setup();
-  }
+  Simulation(const Model& model, Integrator integrator = {}, SimulationOptions options = {}, Contact contact = {});
 
   // ---- loads and initial conditions ----
   // Table (base) acceleration in m/s^2; every mass gets -m a_table(t) (the table frame).
@@ -308,38 +294,7 @@ class Simulation {
   // element forces, energy and ASI shifts are done while its data is in the core's cache. Done phase
   // by phase over the whole scene instead, every phase streamed the scene's state from memory, and the
   // cost per element grew with the size of the scene (docs/performance.md section 2).
-  StepInfo step() {
-    const auto step_start = std::chrono::steady_clock::now();
-    struct AddTotal {
-      StepTimings& t;
-      std::chrono::steady_clock::time_point s;
-      ~AddTotal() { t.total += std::chrono::duration<double>(std::chrono::steady_clock::now() - s).count(); }
-    } add_total{timings_, step_start};
-    if (!started_) start();
-    const double t1 = t_ + opt_.dt;
-    t_state_ = t1;
-    // Predictor "no motion" (Du = 0) and the loads at t_{n+1}. Its element forces are the last step's.
-    const Loads loads = loads_at(t1);
-    body_sweep([&](int b) { predict_body(b, loads); });
-    // The predictor's Newmark velocity, (1 - gamma / beta) v_n, has the wrong sign, and friction or the
-    // paper's damping evaluated there would pump energy: contact sees v_n + dt a_n (v_contact_) instead.
-    timed(timings_.contact, [&] {
-      contact_forces(t1, v_contact_, fc1_);
-      linearised_contact_at_current_state();
-    });
-    if (opt_.check_finite && !(detail::all_finite(fc1_) && detail::all_finite(fext1_))) {
-      residual();  // for the diagnosis
-      throw SimulationError(t_, "the residual is not finite (NaN or infinity) at the start of the step: " +
-                                    non_finite_diagnosis());
-    }
-    StepKernel kernel{*this, t1};
-    const StepInfo info = step_with(integrator_.mode, kernel);
-    if (integrator_.mode == EquilibriumMode::carry_over) timed(timings_.contact, [&] { contact_at_end_of_step(); });
-    if constexpr (requires { contact_.commit(); }) contact_.commit();
-    t_ = t1;
-    ++steps_;
-    return info;
-  }
+  StepInfo step();
 
   // Steps until time t_end; the observer (if any) is called after every step with (sim, info).
   template <class Observer>
@@ -360,24 +315,14 @@ class Simulation {
   using StaticResult = furniture_fem::StaticResult;
   // Load control: the load factor ramped from 1/increments to 1, full Newton (tangent refreshed at
   // every iteration) at each increment.
-  StaticResult solve_static(int increments = 1, int max_iterations = 50, double tolerance = 1e-9) {
-    const StaticScope statics(*this, StaticScope::restart_dynamics);
-    return detail::StaticSolver<Simulation>(*this).load_control(increments, max_iterations, tolerance);
-  }
+  StaticResult solve_static(int increments = 1, int max_iterations = 50, double tolerance = 1e-9);
   // Displacement control: DOF `dof` (0-2 translations, 3-5 rotations) of `node` moved from where it is
   // to `target` in equal increments; the path gives the load factor of the reference load (nodal loads,
   // gravity, spring targets) at each. The state starts at load factor start_load_factor.
   StaticPath solve_static_displacement(int node, int dof, double target, int increments, int max_iterations = 50,
-                                       double tolerance = 1e-9, double start_load_factor = 0) {
-    const StaticScope statics(*this, StaticScope::restart_dynamics);
-    return detail::StaticSolver<Simulation>(*this).displacement_control(node, dof, target, increments, max_iterations,
-                                                                        tolerance, start_load_factor);
-  }
+                                       double tolerance = 1e-9, double start_load_factor = 0);
   // Arc-length (Crisfield, cylindrical): follows the path past limit points and along mechanisms.
-  StaticPath solve_static_arc_length(const ArcLengthOptions& options) {
-    const StaticScope statics(*this, StaticScope::restart_dynamics);
-    return detail::StaticSolver<Simulation>(*this).arc_length(options);
-  }
+  StaticPath solve_static_arc_length(const ArcLengthOptions& options);
   double load_factor() const { return load_factor_; }
   void set_load_factor(double f) { load_factor_ = f; }
 
@@ -1655,8 +1600,12 @@ class Simulation {
       for (int i = 0; i < n; ++i) apply_increment(sim, sim.systems_[members[i]], dq.template segment<6>(6 * i));
     }
 
+    // Constrained, not only guarded at its call: an explicit instantiation (the compiled core) instantiates
+    // every member whose constraints hold.
     static void add_pair_terms(const Simulation& sim, std::span<const int> members, const std::vector<Vec3>& centre,
-                               Eigen::MatrixXd& A) {
+                               Eigen::MatrixXd& A)
+      requires PairTangentPolicy<Contact>
+    {
       const auto index = [&](int body) {
         return static_cast<int>(std::find(members.begin(), members.end(), body) - members.begin());
       };
@@ -1849,5 +1798,94 @@ class Simulation {
   };
   std::vector<Spring> springs_;
 };
+
+// ---- the entry points, defined outside the class ----
+// Defined here rather than in the class body, they are not implicitly inline: a translation unit that
+// declares an instantiation `extern` (below) compiles none of the solver behind them, and the compiled
+// core (furniture_fem::core_compiled) provides them once (docs/performance.md section 6).
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+Simulation<Element, Integrator, LinearSolver, Contact>::Simulation(const Model& model, Integrator integrator,
+                                                                  SimulationOptions options, Contact contact)
+    : model_(model), integrator_(integrator), opt_(options), coef_(integrator.coefficients()),
+      contact_(std::move(contact)) {
+  model_.validate();
+  if (!(opt_.dt >= SimulationOptions::min_dt) || !std::isfinite(opt_.dt))
+    throw ModelError("simulation: dt must be finite and at least " + detail::fmt(SimulationOptions::min_dt) +
+                     " s (got " + detail::fmt(opt_.dt) + ")");
+  if constexpr (Element::needs_pairs) {
+    for (int e = 0; e < model_.num_elements(); ++e)
+      if (model_.elements()[e].slot == PairSlot::none)
+        throw ModelError(model_.describe_element(e) + ": the " + std::string(Element::name) +
+                         " element needs members split into pairs (MemberOptions::pairs)");
+  }
+  setup();
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+StepInfo Simulation<Element, Integrator, LinearSolver, Contact>::step() {
+  const auto step_start = std::chrono::steady_clock::now();
+  struct AddTotal {
+    StepTimings& t;
+    std::chrono::steady_clock::time_point s;
+    ~AddTotal() { t.total += std::chrono::duration<double>(std::chrono::steady_clock::now() - s).count(); }
+  } add_total{timings_, step_start};
+  if (!started_) start();
+  const double t1 = t_ + opt_.dt;
+  t_state_ = t1;
+  // Predictor "no motion" (Du = 0) and the loads at t_{n+1}. Its element forces are the last step's.
+  const Loads loads = loads_at(t1);
+  body_sweep([&](int b) { predict_body(b, loads); });
+  // The predictor's Newmark velocity, (1 - gamma / beta) v_n, has the wrong sign, and friction or the
+  // paper's damping evaluated there would pump energy: contact sees v_n + dt a_n (v_contact_) instead.
+  timed(timings_.contact, [&] {
+    contact_forces(t1, v_contact_, fc1_);
+    linearised_contact_at_current_state();
+  });
+  if (opt_.check_finite && !(detail::all_finite(fc1_) && detail::all_finite(fext1_))) {
+    residual();  // for the diagnosis
+    throw SimulationError(t_, "the residual is not finite (NaN or infinity) at the start of the step: " +
+                                  non_finite_diagnosis());
+  }
+  StepKernel kernel{*this, t1};
+  const StepInfo info = step_with(integrator_.mode, kernel);
+  if (integrator_.mode == EquilibriumMode::carry_over) timed(timings_.contact, [&] { contact_at_end_of_step(); });
+  if constexpr (requires { contact_.commit(); }) contact_.commit();
+  t_ = t1;
+  ++steps_;
+  return info;
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+StaticResult Simulation<Element, Integrator, LinearSolver, Contact>::solve_static(int increments, int max_iterations,
+                                                                                  double tolerance) {
+  const StaticScope statics(*this, StaticScope::restart_dynamics);
+  return detail::StaticSolver<Simulation>(*this).load_control(increments, max_iterations, tolerance);
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+StaticPath Simulation<Element, Integrator, LinearSolver, Contact>::solve_static_displacement(
+    int node, int dof, double target, int increments, int max_iterations, double tolerance, double start_load_factor) {
+  const StaticScope statics(*this, StaticScope::restart_dynamics);
+  return detail::StaticSolver<Simulation>(*this).displacement_control(node, dof, target, increments, max_iterations,
+                                                                      tolerance, start_load_factor);
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+StaticPath Simulation<Element, Integrator, LinearSolver, Contact>::solve_static_arc_length(
+    const ArcLengthOptions& options) {
+  const StaticScope statics(*this, StaticScope::restart_dynamics);
+  return detail::StaticSolver<Simulation>(*this).arc_length(options);
+}
+
+// The combinations the compiled core (src/core/simulation_instances.cpp, target
+// furniture_fem::core_compiled) instantiates. A program that links it gets FURNITURE_FEM_COMPILED_CORE
+// from the target and compiles none of their solver code itself: the README's snippet in 7 s instead of
+// 34 s. Header-only use (furniture_fem::core) does not define it and instantiates what it uses.
+#ifdef FURNITURE_FEM_COMPILED_CORE
+extern template class Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver>;
+extern template class Simulation<ConventionalTimoshenko, Newmark, DirectLdltSolver>;
+extern template class Simulation<CubicEulerBernoulli, Newmark, DirectLdltSolver>;
+#endif
 
 }  // namespace furniture_fem
