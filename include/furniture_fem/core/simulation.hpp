@@ -1600,12 +1600,12 @@ class Simulation {
       for (int i = 0; i < n; ++i) apply_increment(sim, sim.systems_[members[i]], dq.template segment<6>(6 * i));
     }
 
-    // Constrained, not only guarded at its call: an explicit instantiation (the compiled core) instantiates
-    // every member whose constraints hold.
+    // A member template, though called only under `if constexpr`: an explicit instantiation (the compiled
+    // core) instantiates every ordinary member of the class, and this one needs a contact with pair tangents
+    // (a requires-clause is enough for GCC 12, not for clang 14).
+    template <class = void>
     static void add_pair_terms(const Simulation& sim, std::span<const int> members, const std::vector<Vec3>& centre,
-                               Eigen::MatrixXd& A)
-      requires PairTangentPolicy<Contact>
-    {
+                               Eigen::MatrixXd& A) {
       const auto index = [&](int body) {
         return static_cast<int>(std::find(members.begin(), members.end(), body) - members.begin());
       };
