@@ -28,6 +28,7 @@ for t in $targets; do cmake --build build-asan -j 2 --target "$t"; done
 built=$(date +%s)
 echo "sanitized build: $((built - start)) s ($targets)"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1"
+export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizers/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 status=0
 ctest --test-dir build-asan --output-on-failure -j 2 ${regex:+-R "${regex#|}"} || status=$?

@@ -49,7 +49,9 @@ class StateWriter {
 
  private:
   std::string bytes_;
-  void raw(const void* p, std::size_t n) { bytes_.append(static_cast<const char*>(p), n); }
+  void raw(const void* p, std::size_t n) {
+    if (n > 0) bytes_.append(static_cast<const char*>(p), n);  // p may be null when n is 0
+  }
   void size(std::size_t n) {
     const std::uint64_t v = n;
     raw(&v, sizeof v);
@@ -143,6 +145,7 @@ class StateReader {
     if (n > bytes_.size() - pos_)
       throw InputError(source_, 0, "checkpoint",
                        "ends after " + std::to_string(bytes_.size()) + " bytes, in the middle of the state: truncated");
+    if (n == 0) return;  // p may be an empty vector's null data(): memcpy's arguments must not be null
     std::memcpy(p, bytes_.data() + pos_, n);
     pos_ += n;
   }

@@ -1309,6 +1309,10 @@ class Simulation {
       }
       if (bs.needs_refresh) {
         changes.clear();
+        // A refresh asked for here (too many contact changes) finds K as last factorised: the structure at
+        // that configuration and that factorisation's contact terms, which factor_contact_terms would add
+        // to a second time. Assembled first, it is the tangent at the current configuration.
+        if (!bs.assembled) sim.evaluate_body(b, true);
         factor_contact_terms(sim, bs);
         try {
           sim.timed(s.factorize, [&] { sim.solvers_[b]->factorize(bs.K); });
