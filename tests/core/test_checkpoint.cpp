@@ -136,7 +136,8 @@ TEST_CASE("a checkpoint of another model or a truncated one is refused, naming t
   }
   SECTION("longer than the state") {
     auto other = make(f.model, EquilibriumMode::carry_over);
-    StateReader r(w.bytes() + "extra", "run/checkpoint.bin");
+    const std::string longer = w.bytes() + "extra";  // alive while r reads it (r does not own its bytes)
+    StateReader r(longer, "run/checkpoint.bin");
     other->load_state(r);
     REQUIRE_THROWS_WITH(r.finish(), Catch::Contains("run/checkpoint.bin") && Catch::Contains("5 bytes left over"));
   }

@@ -117,6 +117,9 @@ class StateReader {
   static constexpr bool saving = false;
   // `source` names the bytes in errors (the checkpoint file).
   StateReader(std::string_view bytes, std::string source) : bytes_(bytes), source_(std::move(source)) {}
+  // The reader does not own its bytes: a temporary string would be gone before the first read (a test
+  // passed `w.bytes() + "extra"`; AddressSanitizer: heap-use-after-free). Keep the string alive.
+  StateReader(std::string&&, std::string) = delete;
   template <class... T>
   void operator()(T&... values) {
     (get(values), ...);
