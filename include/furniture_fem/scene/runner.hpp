@@ -11,6 +11,7 @@
 // everything written so far readable and the reason in the summary.
 #include <algorithm>
 #include <chrono>
+#include <cstddef>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -453,6 +454,27 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt, const std:
                       extra, t_start);
 }
 
+// The run of the law at index I of scene_contact_laws, with the scene's linear solver (CG only where the
+// record allows it; validate() refuses the rest). The compiled scene runner (target
+// furniture_fem::scene_compiled, src/scene/run_law.cpp: one translation unit per law, built in
+// parallel) defines FURNITURE_FEM_COMPILED_SCENE for its users, who then see this declaration only and
+// compile none of the laws' simulations; header-only use (furniture_fem::scene) instantiates them here.
+template <std::size_t I>
+RunSummary run_law(const SceneSpec& spec, const RunOptions& opt, const std::vector<RunObserver*>& extra,
+                   const RunStart& t_start);
+
+#ifndef FURNITURE_FEM_COMPILED_SCENE
+template <std::size_t I>
+RunSummary run_law(const SceneSpec& spec, const RunOptions& opt, const std::vector<RunObserver*>& extra,
+                   const RunStart& t_start) {
+  using R = scene_contact_laws::at<I>;
+  if constexpr (R::cg_allowed)
+    if (spec.solver != SolverKind::direct)
+      return run_composed<typename R::law, ConjugateGradientSolver>(spec, opt, extra, t_start);
+  return run_composed<typename R::law, DirectLdltSolver>(spec, opt, extra, t_start);
+}
+#endif
+
 }  // namespace detail
 
 // Runs a scene with the standard observers (its outputs, as RunOptions asks) and then `extra`, in
@@ -471,16 +493,9 @@ inline RunSummary run_scene(const SceneSpec& spec, const RunOptions& opt = {}, c
     if (opt.resume) check_resumable_folder(out);
     else check_results_folder(out, opt.overwrite);
   }
-  // The law's record picks the ContactLaw; CG only where the record allows it (validate() refuses the rest).
-  const bool direct = spec.solver == SolverKind::direct;
+  // The law's record picks the ContactLaw (detail::run_law: the solver).
   RunSummary sum;
-  const auto run = [&]<class R>() {
-    if constexpr (R::cg_allowed)
-      sum = direct ? detail::run_composed<typename R::law, DirectLdltSolver>(spec, opt, extra, t_start)
-                   : detail::run_composed<typename R::law, ConjugateGradientSolver>(spec, opt, extra, t_start);
-    else
-      sum = detail::run_composed<typename R::law, DirectLdltSolver>(spec, opt, extra, t_start);
-  };
+  const auto run = [&]<class R>() { sum = detail::run_law<law_kind<R>.index>(spec, opt, extra, t_start); };
   if (visit_scene_law(spec.contact.law, run)) return sum;
   throw InputError(spec.source, 0, "contact.law", "unknown contact law");
 }

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <optional>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 #include "../../contact/contact_laws.hpp"
@@ -90,6 +91,8 @@ struct SceneLawDefaults {
 template <class... Records>
 struct LawList {
   static constexpr std::size_t size = sizeof...(Records);
+  template <std::size_t I>
+  using at = std::tuple_element_t<I, std::tuple<Records...>>;
 };
 
 namespace detail {
