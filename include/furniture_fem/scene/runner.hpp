@@ -456,9 +456,9 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt, const std:
 
 // The run of the law at index I of scene_contact_laws, with the scene's linear solver (CG only where the
 // record allows it; validate() refuses the rest). The compiled scene runner (target
-// furniture_fem::scene_compiled, src/scene/run_law.cpp: one translation unit per law, built in
-// parallel) defines FURNITURE_FEM_COMPILED_SCENE for its users, who then see this declaration only and
-// compile none of the laws' simulations; header-only use (furniture_fem::scene) instantiates them here.
+// furniture_fem::scene_compiled, src/scene/run_scene.cpp: every law instantiated once) defines
+// FURNITURE_FEM_COMPILED_SCENE for its users, who then see this declaration only and compile none of
+// the laws' simulations; header-only use (furniture_fem::scene) instantiates them here.
 template <std::size_t I>
 RunSummary run_law(const SceneSpec& spec, const RunOptions& opt, const std::vector<RunObserver*>& extra,
                    const RunStart& t_start);
