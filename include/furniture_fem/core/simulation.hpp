@@ -1646,30 +1646,21 @@ class Simulation {
       const Vec3 c = bs.rigid_at_start ? bs.rigid_c0 : mass_centre(sim, bs);
       Eigen::Matrix<double, 6, 6> A = Eigen::Matrix<double, 6, 6>::Zero();
       Vec6 R6 = Vec6::Zero();
-      // One pass over the nodes for the moments of the mass about c (sum m, sum m r, sum m r r^T), the
-      // rotary inertia and the reduced residual; the 6 x 6 blocks from them after the loop.
-      double M = 0;
-      Vec3 first = Vec3::Zero(), diag_rotary = Vec3::Zero(), force = Vec3::Zero(), moment = Vec3::Zero();
-      Mat3 second = Mat3::Zero(), turned_rotary = Mat3::Zero();
+      // The body's inertia tensor about c (world axes), in the same pass: sum over nodes of
+      // m (|r|^2 I - r r^T) + R_n T_n R_n^T, T_n the node's initial rotary inertia (node_rotary_inertia).
+      Mat3 I = Mat3::Zero();
       for (int n : bs.nodes) {
         const Vec3 r = sim.x_[n] - c;
-        const double m = mass[6 * n];
-        M += m;
-        first += m * r;
-        second.noalias() += (m * r) * r.transpose();
+        const Mat3 S = detail::skew(r);  // dtheta x r = -S dtheta
+        const double m = mf * mass[6 * n];
+        A.template block<3, 3>(0, 0) += m * Mat3::Identity();
+        A.template block<3, 3>(0, 3) -= m * S;
+        A.template block<3, 3>(3, 0) += m * S;
         const Vec3 rf = r_nodal.template segment<3>(6 * n), rm = r_nodal.template segment<3>(6 * n + 3);
-        force += rf;
-        moment += r.cross(rf) + rm;
-        if (sim.rotary_index_[n] < 0) diag_rotary += mass.template segment<3>(6 * n + 3);
-        else turned_rotary += sim.node_rotary_inertia(n);
+        R6.template head<3>() += rf;
+        R6.template tail<3>() += S * rf + rm;
+        I += mass[6 * n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose()) + sim.node_rotary_inertia(n);
       }
-      const Mat3 S = detail::skew(first);
-      A.template block<3, 3>(0, 0) = (mf * M) * Mat3::Identity();
-      A.template block<3, 3>(0, 3) = -mf * S;
-      A.template block<3, 3>(3, 0) = mf * S;
-      R6 << force, moment;
-      Mat3 I = second.trace() * Mat3::Identity() - second + turned_rotary;
-      I.diagonal() += diag_rotary;
       if (!sim.static_) add_contact_terms(sim, bs, c, A);
       A.template block<3, 3>(3, 3) += mf * I;
       R6.template tail<3>() += anisotropic_inertia_moment(sim, bs);
