@@ -48,8 +48,10 @@ class DirectLdltSolver {
     ++factorizations_;
   }
   // x = P^T L^-T D^-1 L^-1 P r, what Eigen's solve computes, with the repacked factor.
+  // False before the first factorisation: Eigen's info() may not be asked then (an assertion in builds
+  // without NDEBUG: the sanitized core group aborted here, 2026-11-27).
   bool solve(const Eigen::VectorXd& r, Eigen::VectorXd& x) {
-    if (ldlt_.info() != Eigen::Success || ldlt_.vectorD().size() != r.size()) return false;
+    if (factorizations_ == 0 || ldlt_.info() != Eigen::Success || ldlt_.vectorD().size() != r.size()) return false;
     work_ = ldlt_.permutationP() * r;
     factor_.solve_lower(work_);
     work_.array() /= ldlt_.vectorD().array();
