@@ -205,7 +205,7 @@ class RoomContact {
     return out;
   }
   // Whether any of the body's (node, plane) statuses at the view's state differs from the last
-  // add_forces' (no allocation: called for every rigid body at every step).
+  // add_forces' (no allocation: called for every implicit body at every step).
   bool body_plane_status_changed(const ContactView& view, int body) const {
     if (!implicit || !bodies_[body].implicit || plane_status_.empty()) return false;
     return any_body_plane_force(view, body, [&](int n, std::size_t p, const ContactForce& cf) {

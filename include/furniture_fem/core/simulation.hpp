@@ -59,7 +59,7 @@ struct SimulationOptions {
   bool finite_rotation_update = true;  // put each free body's rigid turn of a step on the finite rotation
   bool check_finite = true;     // stop with a diagnosis on NaN / divergence
   int threads = 1;              // threads over bodies (element forces, solves); 0: all hardware threads
-  // Carry-over: a rigid body whose floor or wall contacts change status within the step (a corner that
+  // Carry-over: a body whose floor or wall contacts change status within the step (a corner that
   // touches, a face that leaves, a dashpot clamped) is solved again with its contacts at the step's
   // end, at most this many times (docs/contact/implicit_contact.md, "Contacts that change within a
   // step"). 0: the predictor's contacts for the whole step (a face arriving at 5 m/s then enters the
@@ -138,7 +138,7 @@ concept ImplicitContactPolicy = ContactPolicy<C> && requires(C c, const ContactV
 // An implicit contact policy that can evaluate one body's plane contacts at a trial state of the
 // step (body_plane_contacts: tangents, forces, statuses; body_plane_status_changed: only whether a
 // status differs), with the statuses of its last evaluation (last_status) and the forces that
-// evaluation applied (plane_forces): a rigid body whose contacts change status within a step is then
+// evaluation applied (plane_forces): a body whose contacts change status within a step is then
 // solved again (SimulationOptions::contact_iterations).
 template <class C>
 concept BodyPlaneContactPolicy = ImplicitContactPolicy<C> && requires(const C c, const ContactView& view, const Model& m) {
@@ -509,7 +509,8 @@ class Simulation {
     BodyStepSums& s = sums_[b];
     timed(s.solve, [&] { residual_body(systems_[b], fext1_, s.residual_num, s.residual_den); });
     if (!update_body(b, s, true)) return;
-    if (systems_[b].rigid) resolve_changed_contacts(std::span<const int>(&b, 1));
+    resolve_changed_contacts(std::span<const int>(&b, 1));
+    if (s.solve_failed) return;
     if (opt_.check_finite) {
       for (int n : systems_[b].nodes) s.not_finite = s.not_finite || !Du_.segment<6>(6 * n).allFinite();
       if (s.not_finite) return;
@@ -517,17 +518,15 @@ class Simulation {
     commit_body(b, s);
   }
 
-  // A rigid body's (or rigid group's) step again while its floor and wall contacts at the step's end
+  // A body's (or rigid group's) step again while its floor and wall contacts at the step's end
   // differ in status from those it was solved with: a Newton step from the end state with the
   // contacts evaluated there (forces into fc1_ in place of the ones it held, their slopes into the
   // 6 x 6 system; a group's pairs carried by their linearisation to that state). The forces a body
   // ends with are the last evaluation's carried by its linearisation to the end state, as
   // contact_at_end_of_step does for the others (which then skips the body). Statuses that stop
   // changing mean the last solve had the right contacts; a status that keeps flipping (a clamp with no
-  // consistent side) is left after contact_iterations.
-  // Rigid bodies only: a frame done the same way (refactorised) lost its resting chatter but its
-  // suddenly loaded sway, no longer damped by that chatter, lifted a tall frame's heel by 6 cm at 0.98
-  // g b/h (docs/contact/implicit_contact.md).
+  // consistent side) is left after contact_iterations. A flexible body's Newton step goes through its
+  // factorisation with the new contact terms (low-rank update, or refactorised beyond the cap).
   void resolve_changed_contacts(std::span<const int> members) {
     if constexpr (BodyPlaneContactPolicy<Contact>) {
       if (opt_.contact_iterations <= 0 || static_) return;
@@ -539,7 +538,7 @@ class Simulation {
       for (size_t i = 0; i < n; ++i) status[i] = contact_.last_status(model_, members[i]);
       std::vector<typename Contact::BodyPlaneContacts> used(n), now(n);
       bool iterated = false;
-      for (int it = 0; it < opt_.contact_iterations; ++it) {
+      for (int it = 0; it < opt_.contact_iterations && !sums_[members.front()].solve_failed; ++it) {
         const ContactView view{model_, x_, v_, t_state_, opt_.dt};
         bool changed = false;
         for (size_t i = 0; i < n; ++i) {
@@ -571,8 +570,14 @@ class Simulation {
     used = std::move(now);
     set_body_contact_terms(systems_[b], used.tangents);
   }
-  // A rigid body's (or group's) Newton step from where its last solve left it.
+  // A body's (or rigid group's) Newton step from where its last solve left it.
   void newton_step_from_current_state(std::span<const int> members) {
+    if (const int b = members.front(); !systems_[b].rigid) {  // flexible: never grouped
+      double num = 0, den = 0;
+      residual_body(systems_[b], fext1_, num, den);
+      update_body(b, sums_[b], false);
+      return;
+    }
     if (members.size() > 1) carry_group_pairs_to_current_state(members);
     double num = 0, den = 0;
     for (int b : members) residual_body(systems_[b], fext1_, num, den);
