@@ -13,7 +13,9 @@
 // while stepping writes a checkpoint (checkpoint.bin) that `--resume DIR` goes on from with the same
 // command line; a second one leaves at once. A long run also writes one every --checkpoint-every S of
 // wall time (default 600 s), so a killed run is not lost either.
-#include <furniture_fem/scene/scene_runner.hpp>
+#include <furniture_fem/core/text.hpp>
+#include <furniture_fem/scene/paper_configurations.hpp>
+#include <furniture_fem/scene/run_scene.hpp>
 
 #include <CLI/CLI.hpp>
 

@@ -2,7 +2,7 @@
 // unit, range, default and meaning, its size and its builder), registered from C++, placed in a scene
 // given as JSON text next to the paper's desk, checked, built and shaken for a few seconds.
 #include <furniture_fem/scene/scene.hpp>
-#include <furniture_fem/scene/scene_runner.hpp>
+#include <furniture_fem/scene/run_scene.hpp>
 
 #include <cstdio>
 #include <iostream>

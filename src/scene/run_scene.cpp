@@ -4,6 +4,9 @@
 // take 1 minute and 2.3 GB instead of 2.7 minutes and 4.3 GB (docs/performance.md, section 6).
 // One translation unit: the laws share most of their code (the run loop, the observers, the
 // solver), so a unit per law costs almost as much as all of them (148 s against 164 s).
+// parse_scene and run_scene are defined here, out of line (scene/detail/compiled_entry_points.hpp).
+#define FURNITURE_FEM_BUILDING_SCENE_LIBRARY
+#include <furniture_fem/scene/reader.hpp>
 #include <furniture_fem/scene/scene_runner.hpp>
 
 namespace furniture_fem::detail {

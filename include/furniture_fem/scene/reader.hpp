@@ -22,6 +22,7 @@
 #include "spec.hpp"
 
 #define FURNITURE_FEM_SCENE_INTERNAL
+#include "detail/compiled_entry_points.hpp"
 #include "detail/scene_json.hpp"
 #include "detail/scene_names.hpp"
 #undef FURNITURE_FEM_SCENE_INTERNAL
@@ -475,12 +476,15 @@ inline nlohmann::json read_json_file(const std::string& path, const std::string&
 }
 
 // Reads a scene file (read_json_file's checks); relative paths inside the file are taken relative to
-// the file's folder (SceneSpec::resolve).
-inline SceneSpec parse_scene(const std::string& path) {
+// the file's folder (SceneSpec::resolve). Declared only for the compiled scene runner's users
+// (detail/compiled_entry_points.hpp).
+#ifndef FFEM_SCENE_DECLARED_ONLY
+FFEM_SCENE_ENTRY_INLINE SceneSpec parse_scene(const std::string& path) {
   const nlohmann::json j = read_json_file(path, "scene");
   SceneSpec s = parse_scene_json(j, path);
   s.base_dir = std::filesystem::path(path).parent_path().string();
   return s;
 }
+#endif
 
 }  // namespace furniture_fem

@@ -26,6 +26,10 @@
 #include "run_checkpoint.hpp"
 #include "scene_simulation.hpp"
 
+#define FURNITURE_FEM_SCENE_INTERNAL
+#include "detail/compiled_entry_points.hpp"
+#undef FURNITURE_FEM_SCENE_INTERNAL
+
 namespace furniture_fem {
 
 // The scene's output requests resolved to nodes and elements; errors name the request.
@@ -477,10 +481,12 @@ RunSummary run_law(const SceneSpec& spec, const RunOptions& opt, const std::vect
 
 }  // namespace detail
 
+// Declared only for the compiled scene runner's users (detail/compiled_entry_points.hpp).
+#ifndef FFEM_SCENE_DECLARED_ONLY
 // Runs a scene with the standard observers (its outputs, as RunOptions asks) and then `extra`, in
 // that order; returns its summary. RunOptions::write_files = false runs it without writing anything
 // (the summary still holds the final states and the section peaks).
-inline RunSummary run_scene(const SceneSpec& spec, const RunOptions& opt = {}, const std::vector<RunObserver*>& extra = {}) {
+FFEM_SCENE_ENTRY_INLINE RunSummary run_scene(const SceneSpec& spec, const RunOptions& opt = {}, const std::vector<RunObserver*>& extra = {}) {
   const detail::RunStart t_start;
   validate(spec);
   row_interval_steps(opt, spec.dt);  // a bad interval or length fails before the model is built
@@ -499,5 +505,6 @@ inline RunSummary run_scene(const SceneSpec& spec, const RunOptions& opt = {}, c
   if (visit_scene_law(spec.contact.law, run)) return sum;
   throw InputError(spec.source, 0, "contact.law", "unknown contact law");
 }
+#endif
 
 }  // namespace furniture_fem

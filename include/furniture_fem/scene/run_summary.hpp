@@ -1,0 +1,125 @@
+#pragma once
+// furniture_fem/scene/run_summary.hpp: what a run is asked to do and what it reports.
+//
+//   RunOptions       how to run a scene (folder, duration, history interval, stop flag, trust limits)
+//   RunSummary       how it went: status, times, counts, energy ledger, final states, section peaks
+//
+// Plain data, apart from the simulation and the contact (observer.hpp has the observers' interface):
+// a program that only runs scenes (scene/run_scene.hpp) compiles these and not the solver.
+#include <Eigen/Core>
+#include <array>
+#include <atomic>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "../core/model.hpp"
+#include "../io/vtk.hpp"
+
+namespace furniture_fem {
+
+inline constexpr const char* version_string = "0.1.0";
+
+struct RunOptions {
+  std::string out_dir;                        // empty: the scene's outputs.folder
+  // A non-empty results folder that no run of this program wrote, or whose run.json says a run is still
+  // running, is refused (InputError); true: remove the old results in it (only the files a run writes,
+  // results_folder.hpp) and write. A folder a run wrote is always cleared of its old results first.
+  bool overwrite = false;
+  std::string git_hash;                       // written to run.json; empty: unknown (null)
+  bool write_files = true;                    // false: no folder, no files, no figures; the summary only
+  bool progress = true;                       // progress bar on stderr
+  // Threads over the bodies of this run; 0: every hardware thread. A study running one realisation
+  // per worker sets 1 (results are the same to the bit with any number).
+  int threads = 0;
+  std::optional<double> duration;             // overrides the scene's duration (s)
+  // How errors about `duration` name it (file and key of InputError): a program sets its option's name.
+  std::string duration_source = "RunOptions", duration_key = "duration (run option)";
+  // History rows (CSV, figures, energy checks) every output_interval s of simulated time, rounded to
+  // whole steps as SceneSpec::refresh_interval_steps() rounds refresh_every (0.01 s: every 10 steps
+  // at dt = 1 ms). See RunView::row_interval_steps.
+  double output_interval = 0.01;
+  const std::atomic<bool>* stop = nullptr;    // set by a signal handler to stop cleanly
+  std::optional<bool> figures;                // overrides outputs.figures
+  // Checkpoints (docs/io/output.md, "Checkpoints"): every this many seconds of wall time the run writes
+  // its whole state to checkpoint.bin in the results folder (atomically); 0: only when stopped (a stop
+  // request writes one before the run ends). A run that completes or diverges removes it.
+  double checkpoint_every = 0;
+  // Go on with the run whose checkpoint is in the results folder (stopped or killed): the same scene and
+  // options (checked), its files cut back to the checkpoint and continued; the results are those of the
+  // run that was never stopped, to the bit.
+  bool resume = false;
+  // A run that creates energy cannot be trusted: it ends as "diverged", with a diagnosis, as soon as
+  // the contact forces' net work or the ledger's imbalance exceeds this fraction of the ledger's scale
+  // (the contact laws only store and dissipate energy, the integrators only dissipate; checked at
+  // every output row). 0: never. See energy_creation_diagnosis().
+  double energy_creation_limit = 0.25;
+  // A run that completes having lost more than this fraction of the ledger's scale (impacts with the
+  // carried-over penalty contact, or a time step too long for the penalty) is kept, but its summary's
+  // diagnosis warns that the energy ledger does not close. See energy_loss_warning().
+  double energy_loss_warning = 0.15;
+  // The energy ledger's verdict (RunSummary::energy): it closes when |imbalance| <= this fraction of its
+  // scale at the end of the run.
+  double energy_tolerance = 0.05;
+  VtuOptions vtu;                             // how the VTU frames are written (binary, compressed)
+};
+
+// Whether the energy ledger closes at the end of the run (summary.json "energy_verdict"), and if not,
+// when the imbalance grew most and which term moved most meanwhile.
+struct EnergyVerdict {
+  bool closes = true;
+  double tolerance = 0;       // RunOptions::energy_tolerance
+  double imbalance = 0;       // J, at the end (the ledger's: lost < 0 < created)
+  double relative = 0;        // imbalance / scale
+  double scale = 0;           // J
+  // The history-row interval in which the imbalance changed most, by how much, and the ledger term
+  // that changed most in it (kinetic, strain, gravity_potential, external_work, contact_work,
+  // damping_work, plastic_work) and by how much (J).
+  double t_from = 0, t_to = 0, imbalance_step = 0;
+  std::string term;
+  double term_step = 0;
+  std::string text;           // one sentence: "closes: ..." or "does not close: ..."
+};
+
+struct ItemFinalState {
+  std::string name;
+  std::string state;          // standing, slid, tilted, fell, overturned, resting_on_item, diverged
+                              // (fell: upright again at the end, but it tipped past 60 degrees or came
+                              // down more than 5 cm on the way, e.g. off the item it stood on; diverged:
+                              // the run diverged, the numbers are those of its last finite step)
+  double slide = 0;           // horizontal displacement of the centre of gravity (m)
+  double tilt_deg = 0;        // angle of the item's vertical axis from the vertical
+  double max_tilt_deg = 0;    // during the run
+  double lift = 0;            // height of the lowest node above the floor contact onset (m)
+  std::string resting_on;     // the item it leans or rests on, if any
+  Vec3 cog_displacement = Vec3::Zero();
+};
+
+// The extremes of one requested sectional force over every step of the run (N, N m; times in s).
+// Components in the order N, Qy, Qz, Mx, My, Mz.
+struct SectionForcePeak {
+  std::string section;  // item:member#element
+  std::array<double, 6> min, max, t_min, t_max;
+};
+
+struct RunSummary {
+  std::string status = "completed";  // completed, stopped, diverged
+  std::string diagnosis;             // why it stopped; for a completed run, empty or an energy-loss warning
+  // t_end: the time reached (s); of a diverged run, its last finite step, the one final states are of.
+  double t_end = 0, duration = 0;
+  std::optional<double> t_diverged;  // a diverged run: the end of the step that diverged (s)
+  long steps = 0;
+  double wall_seconds = 0;
+  double energy_imbalance = 0;        // |imbalance| / scale of the ledger at the end
+  double max_energy_imbalance = 0;    // the largest during the run (at the history rows)
+  long factorizations = 0;
+  int elements = 0, nodes = 0, bodies = 0;
+  std::vector<ItemFinalState> items;
+  std::vector<SectionForcePeak> section_peaks;  // one per outputs.sectional_forces request
+  EnergyVerdict energy;                         // the energy ledger's verdict
+  std::string out_dir;                          // empty when the run wrote no files
+  // The factor ground_motion.scale_to applied to the record (1 without a target); `level` multiplies after.
+  double ground_motion_scale = 1.0;
+};
+
+}  // namespace furniture_fem
