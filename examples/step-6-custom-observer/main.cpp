@@ -9,7 +9,10 @@
 // read-only RunView: the scene, its model and items, and the simulation (positions, section forces,
 // contact forces, energy). The run writes no other file (RunOptions::write_files = false): the
 // summary still holds every item's final state.
-#include <furniture_fem/scene/scene_runner.hpp>
+#include <furniture_fem/io/csv.hpp>
+#include <furniture_fem/scene/observer.hpp>
+#include <furniture_fem/scene/paper_configurations.hpp>
+#include <furniture_fem/scene/run_scene.hpp>
 
 #include <algorithm>
 #include <cstdio>

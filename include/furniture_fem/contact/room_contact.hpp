@@ -28,6 +28,7 @@
 
 #include "cgal_adapter.hpp"
 #include "contact_laws.hpp"
+#include "pair_force.hpp"
 #include "../core/simulation.hpp"
 
 #define FURNITURE_FEM_CONTACT_INTERNAL
@@ -59,14 +60,6 @@ struct RigidPlane {
     const Vec3 r = x - point;
     return std::abs(r.dot(axis_u)) <= half_u && std::abs(r.dot(axis_v)) <= half_v;
   }
-};
-
-// Sum of contact force magnitudes between two bodies (or a body and the floor/walls: -1 / -2) in
-// the last evaluation, for the per-pair force histories.
-struct PairForce {
-  static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
-  int body_a, body_b;
-  Vec3 force_on_a;
 };
 
 template <class Law>

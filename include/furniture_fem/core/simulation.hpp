@@ -39,6 +39,7 @@
 #include "detail/rotation.hpp"
 #include "detail/static_path.hpp"
 #undef FURNITURE_FEM_CORE_INTERNAL
+#include "step_report.hpp"
 
 namespace furniture_fem {
 
@@ -148,39 +149,6 @@ concept BodyPlaneContactPolicy = ImplicitContactPolicy<C> && requires(const C c,
   { c.body_plane_status_changed(view, 0) } -> std::convertible_to<bool>;
   { c.last_status(m, 0) } -> std::convertible_to<std::vector<char>>;
   { c.plane_forces() } -> std::convertible_to<const std::vector<std::pair<int, Vec3>>&>;
-};
-
-// Where the time of the steps went (seconds, accumulated since the start). Wall clock: `contact`
-// (every node and element pair, the whole scene at once), `bodies` (the sweep over the bodies that
-// does everything else a body needs: residual, solve, updates, element forces, energy, ASI shifts)
-// and `total`. Inside the sweep, the time of each body's parts is summed over the bodies, so with
-// several threads these are thread seconds and can exceed `bodies`: `solve` (residual, assembly,
-// factorisation, substitution, finite-rotation update), `factorize` (the factorisations alone, part
-// of `solve`) and `elements` (kinematic update and element forces).
-struct StepTimings {
-  static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
-  double elements = 0, contact = 0, solve = 0, factorize = 0, bodies = 0, total = 0;
-  double other() const { return total - contact - bodies; }  // predictor, loads, checks (wall)
-};
-
-// The energy ledger (J): what the structure holds, and the work done on it.
-struct EnergyLedger {
-  static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
-  double kinetic = 0, strain = 0, gravity_potential = 0;
-  double external_work = 0;   // base excitation inertial forces and nodal loads
-  double contact_work = 0;    // work of contact forces (negative: friction and damping dissipate)
-  double damping_work = 0;    // work of viscous damping (negative)
-  double plastic_work = 0;    // dissipated in plastic hinges (positive)
-  double initial_total = 0;
-  double total() const { return kinetic + strain + gravity_potential; }
-  // What the integrator lost or made: zero for an exact energy balance.
-  double imbalance() const {
-    return total() - initial_total - external_work - contact_work - damping_work + plastic_work;
-  }
-  double scale() const {
-    return std::max({std::abs(kinetic), std::abs(strain), std::abs(external_work), std::abs(contact_work),
-                     std::abs(plastic_work), std::abs(initial_total), 1e-12});
-  }
 };
 
 template <class Element, class Integrator = Newmark, class LinearSolver = DirectLdltSolver, class Contact = NoContact>

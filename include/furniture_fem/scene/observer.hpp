@@ -19,13 +19,16 @@
 #include <string_view>
 #include <vector>
 
-#include "../contact/room_contact.hpp"
-#include "../core/simulation.hpp"
+#include "../contact/pair_force.hpp"
+#include "../core/checkpoint.hpp"
+#include "../core/elements.hpp"
+#include "../core/integrators.hpp"
+#include "../core/rotation.hpp"
+#include "../core/step_report.hpp"
 #include "../excitation/excitation.hpp"
-#include "../io/vtk.hpp"
+#include "../furniture/furniture.hpp"
 #include "run_summary.hpp"
-#include "scene.hpp"
-#include "scene_simulation.hpp"
+#include "spec.hpp"
 
 namespace furniture_fem {
 
@@ -61,45 +64,6 @@ class SteppedSimulation : public SimulationView {
   // Simulation::save_state / load_state (core/checkpoint.hpp).
   virtual void save_state(StateWriter& w) const = 0;
   virtual void load_state(StateReader& r) = 0;
-};
-
-namespace detail {
-template <class Sim>
-struct policies_of;
-template <class Element, class Integrator, class Solver, class Contact>
-struct policies_of<Simulation<Element, Integrator, Solver, Contact>> {
-  using element = Element;
-  using solver = Solver;
-};
-}  // namespace detail
-
-// The view of one composed Simulation (the only observer-facing code instantiated per law and solver).
-template <class Sim>
-class SimulationViewOf final : public SteppedSimulation {
- public:
-  explicit SimulationViewOf(Sim& sim) : sim_(sim) {}
-  StepInfo step() override { return sim_.step(); }
-  void save_state(StateWriter& w) const override { sim_.save_state(w); }
-  void load_state(StateReader& r) override { sim_.load_state(r); }
-  double time() const override { return sim_.time(); }
-  long steps() const override { return sim_.steps(); }
-  const Vec3& position(int n) const override { return sim_.position(n); }
-  const Vec3& displacement(int n) const override { return sim_.displacement(n); }
-  const Mat3& rotation(int n) const override { return sim_.rotation(n); }
-  Vec6 velocity(int n) const override { return sim_.velocity(n); }
-  Vec6 acceleration(int n) const override { return sim_.acceleration(n); }
-  double nodal_mass(int n) const override { return sim_.nodal_mass(n); }
-  SectionForces section_forces(int e) const override { return sim_.section_forces(e); }
-  EnergyLedger energy() const override { return sim_.energy(); }
-  const std::vector<PairForce>& pair_forces() const override { return sim_.contact_model().pair_forces(); }
-  long factorizations() const override { return sim_.factorizations(); }
-  const StepTimings& timings() const override { return sim_.timings(); }
-  std::string integrator_name() const override { return sim_.integrator().name(); }
-  std::string_view solver_name() const override { return detail::policies_of<Sim>::solver::name; }
-  std::string_view element_name() const override { return detail::policies_of<Sim>::element::name; }
-
- private:
-  Sim& sim_;
 };
 
 // The scene's outputs requests resolved to nodes and elements (resolve_output_requests, runner.hpp).
@@ -166,6 +130,31 @@ class RunObserver {
   virtual void save(StateWriter&) {}
   virtual void resume(const RunView&, StateReader&) {}
 };
+
+namespace detail {
+
+// Best rigid rotation of a body from its initial to its current nodes (for tilt and final state).
+template <class Sim>
+Mat3 body_rotation_of(const Sim& sim, const Model& model, int body, Vec3* centroid_shift = nullptr) {
+  const auto& nodes = model.body(body).nodes;
+  Vec3 Xc = Vec3::Zero(), xc = Vec3::Zero();
+  for (int n : nodes) {
+    Xc += model.node(n).X;
+    xc += sim.position(n);
+  }
+  Xc /= double(nodes.size());
+  xc /= double(nodes.size());
+  if (centroid_shift) *centroid_shift = xc - Xc;
+  return best_rotation(
+      static_cast<int>(nodes.size()),
+      [&](int i) { return std::pair<Vec3, Vec3>(model.node(nodes[i]).X, sim.position(nodes[i])); }, Xc, xc);
+}
+
+inline double tilt_of(const Mat3& Q) {
+  return std::acos(std::clamp((Q * Vec3::UnitZ()).z(), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+}
+
+}  // namespace detail
 
 // Angle of a body's vertical axis from the vertical (deg), from its best rigid rotation.
 inline double body_tilt_deg(const SimulationView& sim, const Model& model, int body) {

@@ -40,6 +40,7 @@
 #include "../io/csv.hpp"
 #include "../io/vtk.hpp"
 #include "observer.hpp"
+#include "writer.hpp"
 
 namespace furniture_fem {
 

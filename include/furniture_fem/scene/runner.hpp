@@ -25,6 +25,7 @@
 #include "results_folder.hpp"
 #include "run_checkpoint.hpp"
 #include "scene_simulation.hpp"
+#include "simulation_view.hpp"
 
 #define FURNITURE_FEM_SCENE_INTERNAL
 #include "detail/compiled_entry_points.hpp"

@@ -521,27 +521,6 @@ struct SceneSimulation {
 
 namespace detail {
 
-// Best rigid rotation of a body from its initial to its current nodes (for tilt and final state).
-template <class Sim>
-Mat3 body_rotation_of(const Sim& sim, const Model& model, int body, Vec3* centroid_shift = nullptr) {
-  const auto& nodes = model.body(body).nodes;
-  Vec3 Xc = Vec3::Zero(), xc = Vec3::Zero();
-  for (int n : nodes) {
-    Xc += model.node(n).X;
-    xc += sim.position(n);
-  }
-  Xc /= double(nodes.size());
-  xc /= double(nodes.size());
-  if (centroid_shift) *centroid_shift = xc - Xc;
-  return best_rotation(
-      static_cast<int>(nodes.size()),
-      [&](int i) { return std::pair<Vec3, Vec3>(model.node(nodes[i]).X, sim.position(nodes[i])); }, Xc, xc);
-}
-
-inline double tilt_of(const Mat3& Q) {
-  return std::acos(std::clamp((Q * Vec3::UnitZ()).z(), -1.0, 1.0)) * 180.0 / std::numbers::pi;
-}
-
 }  // namespace detail
 
 }  // namespace furniture_fem

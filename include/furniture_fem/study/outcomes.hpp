@@ -18,7 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "../scene/scene_runner.hpp"
+#include "../scene/observer.hpp"
+#include "../scene/run_scene.hpp"
 #include "realisation.hpp"
 
 namespace furniture_fem {

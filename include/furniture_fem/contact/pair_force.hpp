@@ -1,0 +1,16 @@
+#pragma once
+// furniture_fem/contact/pair_force.hpp: the contact force between two bodies, as the room's contact
+// reports it per pair (RoomContact::pair_forces), apart from the contact module's CGAL detection.
+#include "../core/model.hpp"
+
+namespace furniture_fem {
+
+// Sum of contact force magnitudes between two bodies (or a body and the floor/walls: -1 / -2) in
+// the last evaluation, for the per-pair force histories.
+struct PairForce {
+  static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
+  int body_a, body_b;
+  Vec3 force_on_a;
+};
+
+}  // namespace furniture_fem

@@ -1,0 +1,53 @@
+#pragma once
+// furniture_fem/scene/simulation_view.hpp: the observers' view (observer.hpp, SimulationView) of one
+// composed Simulation: the only observer-facing code instantiated per contact law and linear solver
+// (runner.hpp). Observers include observer.hpp and never this header, so they compile no solver.
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "../core/simulation.hpp"
+#include "observer.hpp"
+
+namespace furniture_fem {
+
+namespace detail {
+template <class Sim>
+struct policies_of;
+template <class Element, class Integrator, class Solver, class Contact>
+struct policies_of<Simulation<Element, Integrator, Solver, Contact>> {
+  using element = Element;
+  using solver = Solver;
+};
+}  // namespace detail
+
+// The view of one composed Simulation (the only observer-facing code instantiated per law and solver).
+template <class Sim>
+class SimulationViewOf final : public SteppedSimulation {
+ public:
+  explicit SimulationViewOf(Sim& sim) : sim_(sim) {}
+  StepInfo step() override { return sim_.step(); }
+  void save_state(StateWriter& w) const override { sim_.save_state(w); }
+  void load_state(StateReader& r) override { sim_.load_state(r); }
+  double time() const override { return sim_.time(); }
+  long steps() const override { return sim_.steps(); }
+  const Vec3& position(int n) const override { return sim_.position(n); }
+  const Vec3& displacement(int n) const override { return sim_.displacement(n); }
+  const Mat3& rotation(int n) const override { return sim_.rotation(n); }
+  Vec6 velocity(int n) const override { return sim_.velocity(n); }
+  Vec6 acceleration(int n) const override { return sim_.acceleration(n); }
+  double nodal_mass(int n) const override { return sim_.nodal_mass(n); }
+  SectionForces section_forces(int e) const override { return sim_.section_forces(e); }
+  EnergyLedger energy() const override { return sim_.energy(); }
+  const std::vector<PairForce>& pair_forces() const override { return sim_.contact_model().pair_forces(); }
+  long factorizations() const override { return sim_.factorizations(); }
+  const StepTimings& timings() const override { return sim_.timings(); }
+  std::string integrator_name() const override { return sim_.integrator().name(); }
+  std::string_view solver_name() const override { return detail::policies_of<Sim>::solver::name; }
+  std::string_view element_name() const override { return detail::policies_of<Sim>::element::name; }
+
+ private:
+  Sim& sim_;
+};
+
+}  // namespace furniture_fem
