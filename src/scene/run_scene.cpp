@@ -1,7 +1,8 @@
 // The compiled scene runner (CMake target furniture_fem::scene_compiled): every contact law's run
 // (runner.hpp, detail::run_law), instantiated once. A program linking the target gets
-// FURNITURE_FEM_COMPILED_SCENE and compiles none of them: its translation units that run a scene
-// take 1 minute and 2.3 GB instead of 2.7 minutes and 4.3 GB (docs/performance.md, section 6).
+// FURNITURE_FEM_COMPILED_SCENE and compiles none of them: a unit that includes scene_runner.hpp takes
+// 1 minute and 2.3 GB instead of 2.7 minutes and 4.3 GB, one that includes only scene/run_scene.hpp
+// 17 s and 0.9 GB (docs/performance.md, section 6).
 // One translation unit: the laws share most of their code (the run loop, the observers, the
 // solver), so a unit per law costs almost as much as all of them (148 s against 164 s).
 // parse_scene and run_scene are defined here, out of line (scene/detail/compiled_entry_points.hpp).
