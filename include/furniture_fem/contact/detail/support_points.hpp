@@ -55,18 +55,43 @@ inline Vec3 unit_normal(const Model& model, const std::array<int, 3>& t) {
   return (X(1) - X(0)).cross(X(2) - X(0)).normalized();
 }
 
-// The hull's triangles (as node triples) merged into flat faces by their planes.
-inline void merge_into_faces(const Model& model, const std::array<int, 3>& tri, std::vector<SupportFace>& faces) {
+// The hull's triangles (as node triples) merged into flat faces by their planes, largest triangle
+// first: a face's plane is its largest triangle's, and a triangle joins the first face whose plane holds
+// its three nodes. Comparing normals instead split faces: CGAL's triangulation of a flat face (which
+// follows the nodes' order and the heap) can hold a sliver between nodes in line to round-off, whose
+// normal is all round-off; it became a face of its own, with a share of a hundred nodes on each of its
+// three vertices, in some processes and not in others.
+inline std::vector<SupportFace> merge_into_faces(const Model& model, std::vector<std::array<int, 3>> tris) {
   constexpr double on_plane = 1e-6;  // m
-  const Vec3 normal = unit_normal(model, tri);
-  const double offset = normal.dot(model.node(tri[0]).X);
-  auto same = std::find_if(faces.begin(), faces.end(), [&](const SupportFace& s) {
-    return unit_normal(model, s.frame).dot(normal) > 1 - 1e-9 &&
-           std::abs(unit_normal(model, s.frame).dot(model.node(s.frame[0]).X) - offset) < on_plane;
+  const auto X = [&](int n) -> const Vec3& { return model.node(n).X; };
+  const auto area2 = [&](const std::array<int, 3>& t) { return (X(t[1]) - X(t[0])).cross(X(t[2]) - X(t[0])).norm(); };
+  const auto sorted = [](std::array<int, 3> t) {
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  std::sort(tris.begin(), tris.end(), [&](const auto& p, const auto& q) {
+    const double ap = area2(p), aq = area2(q);
+    return ap != aq ? ap > aq : sorted(p) < sorted(q);
   });
-  if (same == faces.end()) same = faces.insert(faces.end(), SupportFace{tri, {}, 1});
-  for (int n : tri)
-    if (std::find(same->vertices.begin(), same->vertices.end(), n) == same->vertices.end()) same->vertices.push_back(n);
+  std::vector<SupportFace> faces;
+  std::vector<std::pair<Vec3, double>> planes;  // per face: unit normal, offset
+  for (const auto& tri : tris) {
+    std::size_t k = 0;
+    for (; k < faces.size(); ++k) {
+      const auto& [normal, offset] = planes[k];
+      if (std::all_of(tri.begin(), tri.end(), [&](int n) { return std::abs(normal.dot(X(n)) - offset) < on_plane; }))
+        break;
+    }
+    if (k == faces.size()) {
+      const Vec3 normal = unit_normal(model, tri);
+      faces.push_back(SupportFace{tri, {}, 1});
+      planes.emplace_back(normal, normal.dot(X(tri[0])));
+    }
+    auto& vertices = faces[k].vertices;
+    for (int n : tri)
+      if (std::find(vertices.begin(), vertices.end(), n) == vertices.end()) vertices.push_back(n);
+  }
+  return faces;
 }
 
 // A face in a form that does not depend on how the hull was triangulated or listed: its vertices
@@ -123,12 +148,14 @@ inline SupportGeometry support_geometry(const Model& model, const std::vector<in
   // (a process's heap layout), and so does the triangulation of a flat face. Taken as listed, the
   // faces' frames (hence their normals, to round-off) and the order of their vertices changed from
   // one process to another, and a chaotic run with them. So each face is put in a canonical form.
+  std::vector<std::array<int, 3>> triangles;
   for (auto f : hull.faces()) {
     std::array<int, 3> tri{};
     int k = 0;
     for (auto v : CGAL::vertices_around_face(hull.halfedge(f), hull)) tri[k++] = node_at(hull.point(v));
-    support::merge_into_faces(model, tri, g.faces);
+    triangles.push_back(tri);
   }
+  g.faces = support::merge_into_faces(model, std::move(triangles));
   for (auto& f : g.faces) support::canonical_frame(model, f);
   std::sort(g.faces.begin(), g.faces.end(), [](const SupportFace& a, const SupportFace& b) { return a.frame < b.frame; });
   support::set_shares(model, nodes, g.faces);
