@@ -12,6 +12,7 @@
 #include <CGAL/convex_hull_3.h>
 
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -61,7 +62,8 @@ inline Vec3 unit_normal(const Model& model, const std::array<int, 3>& t) {
 // follows the nodes' order and the heap) can hold a sliver between nodes in line to round-off, whose
 // normal is all round-off; it became a face of its own, with a share of a hundred nodes on each of its
 // three vertices, in some processes and not in others.
-inline std::vector<SupportFace> merge_into_faces(const Model& model, std::vector<std::array<int, 3>> tris) {
+inline std::vector<SupportFace> merge_into_faces(const Model& model, std::vector<std::array<int, 3>> tris,
+                                                 std::vector<std::pair<Vec3, double>>& planes) {
   constexpr double on_plane = 1e-6;  // m
   const auto X = [&](int n) -> const Vec3& { return model.node(n).X; };
   const auto area2 = [&](const std::array<int, 3>& t) { return (X(t[1]) - X(t[0])).cross(X(t[2]) - X(t[0])).norm(); };
@@ -74,7 +76,7 @@ inline std::vector<SupportFace> merge_into_faces(const Model& model, std::vector
     return ap != aq ? ap > aq : sorted(p) < sorted(q);
   });
   std::vector<SupportFace> faces;
-  std::vector<std::pair<Vec3, double>> planes;  // per face: unit normal, offset
+  planes.clear();  // per face: unit normal, offset
   for (const auto& tri : tris) {
     std::size_t k = 0;
     for (; k < faces.size(); ++k) {
@@ -92,6 +94,57 @@ inline std::vector<SupportFace> merge_into_faces(const Model& model, std::vector
       if (std::find(vertices.begin(), vertices.end(), n) == vertices.end()) vertices.push_back(n);
   }
   return faces;
+}
+
+// A face's corners: the convex polygon of the body's nodes on its plane, nodes in line with their
+// neighbours (to 1e-9 m) left out. CGAL keeps or drops a node that lies on a hull edge to round-off
+// (an item turned by a yaw) depending on the nodes' order and the heap; the corners do not. The
+// polygon is taken in the plane fitted to those nodes (least squares), so its basis, too, is the same
+// to the bit whichever hull triangle defined the face.
+inline std::vector<int> face_corners(const Model& model, const std::vector<int>& sorted_nodes, const Vec3& normal,
+                                     double offset) {
+  constexpr double on_plane = 1e-6, in_line = 1e-9;  // m
+  const auto X = [&](int n) -> const Vec3& { return model.node(n).X; };
+  std::vector<int> on;
+  for (int n : sorted_nodes)
+    if (std::abs(normal.dot(X(n)) - offset) < on_plane) on.push_back(n);
+  Vec3 c = Vec3::Zero();
+  for (int n : on) c += X(n);
+  c /= static_cast<double>(on.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (int n : on) cov += (X(n) - c) * (X(n) - c).transpose();
+  const Vec3 fit = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
+  const Vec3 u = fit.unitOrthogonal(), v = fit.cross(u);
+  struct P {
+    double x, y;
+    int node;
+  };
+  std::vector<P> pts;
+  for (int n : on) pts.push_back({u.dot(X(n) - c), v.dot(X(n) - c), n});
+  std::sort(pts.begin(), pts.end(), [](const P& a, const P& b) {
+    return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.node < b.node;
+  });
+  // Andrew's monotone chain; a node within in_line of the line from its predecessor to its successor
+  // is not a corner.
+  const auto keeps = [&](const P& o, const P& a, const P& b) {
+    const double cross = (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+    return cross > in_line * std::hypot(b.x - o.x, b.y - o.y);
+  };
+  std::vector<P> hull;
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t base = hull.size();
+    for (const P& p : pts) {
+      while (hull.size() >= base + 2 && !keeps(hull[hull.size() - 2], hull.back(), p)) hull.pop_back();
+      hull.push_back(p);
+    }
+    hull.pop_back();  // the chain's last point starts the other chain
+    std::reverse(pts.begin(), pts.end());
+  }
+  std::vector<int> corners;
+  for (const P& p : hull) corners.push_back(p.node);
+  std::sort(corners.begin(), corners.end());
+  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+  return corners;
 }
 
 // A face in a form that does not depend on how the hull was triangulated or listed: its vertices
@@ -142,8 +195,6 @@ inline SupportGeometry support_geometry(const Model& model, const std::vector<in
   const auto node_at = [&](const Point& p) {
     return nodes[static_cast<std::size_t>(std::find(points.begin(), points.end(), p) - points.begin())];
   };
-  for (auto v : hull.vertices()) g.vertices.push_back(node_at(hull.point(v)));
-  std::sort(g.vertices.begin(), g.vertices.end());
   // CGAL's listing of the hull depends on the order of the nodes and on where its data lie in memory
   // (a process's heap layout), and so does the triangulation of a flat face. Taken as listed, the
   // faces' frames (hence their normals, to round-off) and the order of their vertices changed from
@@ -155,7 +206,17 @@ inline SupportGeometry support_geometry(const Model& model, const std::vector<in
     for (auto v : CGAL::vertices_around_face(hull.halfedge(f), hull)) tri[k++] = node_at(hull.point(v));
     triangles.push_back(tri);
   }
-  g.faces = support::merge_into_faces(model, std::move(triangles));
+  std::vector<std::pair<Vec3, double>> planes;
+  g.faces = support::merge_into_faces(model, std::move(triangles), planes);
+  std::vector<int> sorted_nodes = nodes;
+  std::sort(sorted_nodes.begin(), sorted_nodes.end());
+  for (std::size_t k = 0; k < g.faces.size(); ++k) {
+    g.faces[k].vertices = support::face_corners(model, sorted_nodes, planes[k].first, planes[k].second);
+    g.vertices.insert(g.vertices.end(), g.faces[k].vertices.begin(), g.faces[k].vertices.end());
+  }
+  // The hull's vertices: the faces' corners.
+  std::sort(g.vertices.begin(), g.vertices.end());
+  g.vertices.erase(std::unique(g.vertices.begin(), g.vertices.end()), g.vertices.end());
   for (auto& f : g.faces) support::canonical_frame(model, f);
   std::sort(g.faces.begin(), g.faces.end(), [](const SupportFace& a, const SupportFace& b) { return a.frame < b.frame; });
   support::set_shares(model, nodes, g.faces);
