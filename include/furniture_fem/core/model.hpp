@@ -181,6 +181,10 @@ struct Body {
 struct MemberOptions {
   double target_length = 0.05;  // the paper's 50 mm
   int elements = 0;             // overrides target_length when > 0
+  // The length the count is taken from, when > 0 (a member's length in its item's own frame): the
+  // nodes' distance differs by round-off with where an item stands, and a length half-way between two
+  // counts then gave one count or the other from one placement to another.
+  double count_length = 0;
   bool pairs = true;            // round the count up to an even number and mark pairs (ASI-Gauss)
   Vec3 y_ref = Vec3::Zero();    // zero: chosen automatically (global z, or global y for vertical members)
   double line_mass = -1;        // kg/m; negative: rho A
@@ -264,7 +268,7 @@ class Model {
     if (n <= 0) {
       if (!(opts.target_length > 0))
         throw ModelError(who + ": target_length must be positive (got " + detail::fmt(opts.target_length) + ")");
-      const double count = length / opts.target_length;
+      const double count = (opts.count_length > 0 ? opts.count_length : length) / opts.target_length;
       if (!count_fits(count, max_member_elements))
         throw ModelError(who + ": target_length " + detail::fmt(opts.target_length) + " m gives " + detail::fmt(count) +
                          " elements over " + detail::fmt(length) + " m (at most 1e6 per member)");

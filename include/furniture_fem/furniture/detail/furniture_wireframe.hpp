@@ -135,6 +135,7 @@ class Wireframe {
         if (!built.insert({std::min(n1, n2), std::max(n1, n2)}).second) continue;  // shared edge
         MemberOptions opts;
         opts.target_length = element_length;
+        opts.count_length = (t[k + 1] - t[k]) * (line.b - line.a).norm();  // the same at every placement
         opts.pairs = true;
         opts.y_ref = line.y_ref_local.norm() > 0 ? Vec3(R * line.y_ref_local) : Vec3::Zero();
         opts.line_mass = line.density_factor * model.materials()[material].rho * model.sections()[line.section].A;

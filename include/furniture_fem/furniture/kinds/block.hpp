@@ -93,28 +93,37 @@ inline ItemInfo build_block(Model& model, const Placement& placement, double W, 
   const double z_edges = (bottom_len * z0 + top_len * z1 + post_len * 0.5 * (z0 + z1)) / edges;
   const double mu = detail::block_frame_mass_share * M / (edges + 4 * std::sqrt(half_diag2 + (h - c) * (h - c)));
   const double z_hub = detail::block_hub_height(M, h, z_edges, mu * edges, mu, half_diag2, c);
-  const auto node = [&](double lx, double ly, double lz) { return model.add_node(info.to_world({lx, ly, lz}), info.body); };
+  const auto node = [&](const Vec3& local) { return model.add_node(info.to_world(local), info.body); };
   const std::array<std::pair<const char*, std::array<double, 2>>, 4> corners{
       {{"front_left", {-1, -1}}, {"front_right", {1, -1}}, {"back_right", {1, 1}}, {"back_left", {-1, 1}}}};
   std::array<int, 4> bottom{}, top{};
+  std::array<Vec3, 4> bottom_local, top_local;  // element counts follow these: the same at every placement
   for (int k = 0; k < 4; ++k) {
     const auto [sx, sy] = corners[k].second;
-    bottom[k] = node(sx * xb, sy * yb, z0);
-    top[k] = node(sx * x, sy * y, z1);
+    bottom_local[k] = Vec3(sx * xb, sy * yb, z0);
+    top_local[k] = Vec3(sx * x, sy * y, z1);
+    bottom[k] = node(bottom_local[k]);
+    top[k] = node(top_local[k]);
   }
-  const int hub = node(0, 0, z_hub);
+  const Vec3 hub_local(0, 0, z_hub);
+  const int hub = node(hub_local);
   const int section = detail::find_or_add_section(
       model, Section::hollow_rectangle(detail::block_edge_width, detail::block_edge_width, 0.001, "block edge 10x10x1"));
   const int material = detail::find_or_add_material(model, Material::steel());
   MemberOptions mo;
   mo.target_length = opts.effective_element_length();
   mo.line_mass = mu;
+  const auto member = [&](const std::string& name, int a, int b, const Vec3& a_local, const Vec3& b_local) {
+    mo.count_length = (b_local - a_local).norm();
+    model.add_member(name, a, b, section, material, mo);
+  };
   for (int k = 0; k < 4; ++k) {
     const std::string from = corners[k].first, to = corners[(k + 1) % 4].first;
-    model.add_member("bottom/" + from + "-" + to, bottom[k], bottom[(k + 1) % 4], section, material, mo);
-    model.add_member("top/" + from + "-" + to, top[k], top[(k + 1) % 4], section, material, mo);
-    model.add_member("post/" + from, bottom[k], top[k], section, material, mo);
-    model.add_member("spoke/" + from, hub, bottom[k], section, material, mo);
+    const int next = (k + 1) % 4;
+    member("bottom/" + from + "-" + to, bottom[k], bottom[next], bottom_local[k], bottom_local[next]);
+    member("top/" + from + "-" + to, top[k], top[next], top_local[k], top_local[next]);
+    member("post/" + from, bottom[k], top[k], bottom_local[k], top_local[k]);
+    member("spoke/" + from, hub, bottom[k], hub_local, bottom_local[k]);
   }
 
   // The hub: the rest of the mass, and the inertia the frame and the hub's offset from the centre of
