@@ -80,7 +80,8 @@ inline std::vector<SupportFace> merge_into_faces(const Model& model, std::vector
   for (const auto& tri : tris) {
     std::size_t k = 0;
     for (; k < faces.size(); ++k) {
-      const auto& [normal, offset] = planes[k];
+      const Vec3& normal = planes[k].first;  // not a structured binding: clang 14 cannot capture those
+      const double offset = planes[k].second;
       if (std::all_of(tri.begin(), tri.end(), [&](int n) { return std::abs(normal.dot(X(n)) - offset) < on_plane; }))
         break;
     }
