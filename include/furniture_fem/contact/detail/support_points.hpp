@@ -85,14 +85,11 @@ inline std::vector<SupportFace> merge_into_faces(const Model& model, std::vector
       if (std::all_of(tri.begin(), tri.end(), [&](int n) { return std::abs(normal.dot(X(n)) - offset) < on_plane; }))
         break;
     }
-    if (k == faces.size()) {
+    if (k == faces.size()) {  // a new face; its vertices are its corners (face_corners)
       const Vec3 normal = unit_normal(model, tri);
       faces.push_back(SupportFace{tri, {}, 1});
       planes.emplace_back(normal, normal.dot(X(tri[0])));
     }
-    auto& vertices = faces[k].vertices;
-    for (int n : tri)
-      if (std::find(vertices.begin(), vertices.end(), n) == vertices.end()) vertices.push_back(n);
   }
   return faces;
 }
