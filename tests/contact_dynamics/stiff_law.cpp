@@ -7,12 +7,16 @@
 //  3. a block dropped at 5 m/s onto the floor and thrown at 5 m/s against a wall: no tunnelling, at most
 //     5 mm in at dt 1 ms; at 0.1 ms 1 mm (rigid) and 1.5 mm (FE);
 //  4. overturned by pulses past the threshold, a rigid block lands on its side with no net positive work
-//     of the contact forces.
+//     of the contact forces as the integrator applied them, also when the pulse changes in its ninth digit;
+//  5. the ledger's contact work as applied is what the items got: for a block dropped flat (no
+//     rotation) it equals the kinetic energy's change less gravity's work, computed from the centre of
+//     mass's velocity outside the ledger.
 // Measured numbers: docs/contact/verification_contact.md (FFEM_REPORT=1 prints them).
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "dynamics_scenes.hpp"
 
@@ -216,24 +220,79 @@ TEST_CASE("overturned by a pulse, a block lands on its side without energy from 
   // work. The corner and face that land do so between two steps; with the predictor's contacts for
   // the whole step (SimulationOptions::contact_iterations = 0) the contact made 10 to 53 % of the
   // block's initial energy in four of these six landings and two blocks were thrown back upright
-  // (measured 2026-11-26). Resolved within the step: at most 3 % (the tall block at 3 times).
+  // (measured 2026-11-26). Resolved within the step, the tall block at 3 times still showed 2.6 to 9 %
+  // net positive work as the pulse changed in its ninth digit (the variants `nudge` > 0) in the ledger's
+  // contact_work, the trapezoidal rule on the increment, which under the paper's Newmark (gamma = 5/6)
+  // is not what the scheme applies where a contact comes on or lets go; as applied
+  // (contact_work_applied, Simulation::StepWork) every landing stays below zero (-0.001 %).
+  struct Landing {
+    BoxSpec spec;
+    double level;
+    int nudge;  // the pulse times 1 + nudge 1e-9
+  };
+  std::vector<Landing> landings;
   for (const auto& spec : {medium_block, tall_block})
-    for (const double level : {1.2, 2.0, 3.0}) {
-      BlockScene<SpringDashpotLaw> s(spec, [&](const Box& b) { return stiff(b, 2.0); }, true, options_dt(1e-3),
+    for (const double level : {1.2, 2.0, 3.0}) landings.push_back({spec, level, 0});
+  for (int k = 1; k <= 5; ++k) landings.push_back({tall_block, 3.0, k});
+  for (const auto& [spec, level, nudge] : landings) {
+    BlockScene<SpringDashpotLaw> s(spec, [&](const Box& b) { return stiff(b, 2.0); }, true, options_dt(1e-3),
+                                   paper_newmark);
+    const Rocker rock = Rocker::of(*s.model, s.box, spec.bx);
+    const double td = 1 / rock.p(), A = level * rock.pulse_threshold(td) * (1 + 1e-9 * nudge);
+    s.sim->run_until(0.3);
+    const double t0 = s.sim->time();
+    s.sim->set_table_acceleration([=](double t) { return Vec3(t > t0 && t <= t0 + td ? -A : 0.0, 0, 0); });
+    double made = -1e300, trapezoidal = -1e300;  // the largest net work of the contact forces so far
+    s.sim->run_until(t0 + td + 3.0, [&](const auto& sim, const StepInfo&) {
+      made = std::max(made, sim.energy().contact_work_applied);
+      trapezoidal = std::max(trapezoidal, sim.energy().contact_work);
+    });
+    const double initial = s.sim->energy().initial_total, lying = 0.5 * spec.bx + tube_half_width;
+    report("S4 pulse %.1f x threshold (1 + %d e-9), h %.1f m, rigid: largest net contact work as applied %.3g J "
+           "(%.4f %% of %.1f J; trapezoidal estimate %.2f %%), centre of gravity %.4f m up (lying: %.4f m)",
+           level, nudge, spec.h, made, 100 * made / initial, initial, 100 * trapezoidal / initial, s.com().z(), lying);
+    INFO("h " << spec.h << " level " << level << " nudge " << nudge);
+    CHECK(made < 1e-3 * initial);
+    CHECK_THAT(s.com().z(), WithinAbs(lying, 0.005));
+  }
+}
+
+TEST_CASE("the ledger's contact work as applied is what the items got: a block dropped flat, stiff law",
+          "[contact_dynamics][impact][stiff][energy]") {
+  // A rigid block (no rotation) thrown flat onto the floor from 10 mm up, under the paper's Newmark
+  // (gamma = 5/6) and the stiff law: the only forces are gravity and the contact, so the contact's work
+  // is the kinetic energy's change less gravity's, M g vz_mean dt per step (the velocity the scheme
+  // moves a constant force through), here from the centre of mass's velocity. contact_work_applied
+  // matches it to 4e-10 J (1e-11 of the energy); the trapezoidal contact_work is off by 4.9 to 70 J of
+  // 4.8 to 119 J. Bound: 1e-7 of the kinetic energy thrown in (round-off over 3000 steps).
+  for (const double dt : {1e-3, 1e-4})
+    for (const double v : {1.0, 3.0, 5.0}) {
+      BlockScene<SpringDashpotLaw> s(BoxSpec{}, [&](const Box& b) { return stiff(b, 0.3); }, true, options_dt(dt),
                                      paper_newmark);
-      const Rocker rock = Rocker::of(*s.model, s.box, spec.bx);
-      const double td = 1 / rock.p(), A = level * rock.pulse_threshold(td);
-      s.sim->run_until(0.3);
-      const double t0 = s.sim->time();
-      s.sim->set_table_acceleration([=](double t) { return Vec3(t > t0 && t <= t0 + td ? -A : 0.0, 0, 0); });
-      double made = -1e300;  // the largest net work the contact forces have done so far
-      s.sim->run_until(t0 + td + 3.0, [&](const auto& sim, const StepInfo&) { made = std::max(made, sim.energy().contact_work); });
-      const double initial = s.sim->energy().initial_total, lying = 0.5 * spec.bx + tube_half_width;
-      report("S4 pulse %.1f x threshold, h %.1f m, rigid: largest net contact work %.3g J (%.2f %% of %.1f J), "
-             "centre of gravity %.4f m up (lying: %.4f m)",
-             level, spec.h, made, 100 * made / initial, initial, s.com().z(), lying);
-      INFO("h " << spec.h << " level " << level);
-      CHECK(made < 0.05 * initial);
-      CHECK_THAT(s.com().z(), WithinAbs(lying, 0.005));
+      for (int k : s.model->body(s.box.body).nodes)
+        s.sim->set_pose(k, s.model->node(k).X + Vec3(0, 0, 0.01), Mat3::Identity());
+      s.sim->set_body_velocity(s.box.body, Vec3(0, 0, -v), Vec3::Zero(), s.box.cog);
+      const double ke0 = 0.5 * s.box.mass * v * v;
+      double ke_prev = -1, vz_prev = 0, ledger0 = 0, by_kinetic = 0, worst = 0, deepest = 0, trapezoidal = 0;
+      s.sim->run_until(0.3, [&](const auto& sim, const StepInfo&) {
+        const EnergyLedger e = sim.energy();
+        const double vz = centre_of_mass_velocity(sim, s.box.body).z();
+        if (ke_prev >= 0) {
+          by_kinetic += e.kinetic - ke_prev + s.box.mass * g0 * 0.5 * (vz + vz_prev) * dt;
+          worst = std::max(worst, std::abs(e.contact_work_applied - ledger0 - by_kinetic));
+          trapezoidal = std::max(trapezoidal, std::abs(e.contact_work - e.contact_work_applied));
+          deepest = std::min(deepest, by_kinetic);
+        } else {
+          ledger0 = e.contact_work_applied;
+        }
+        ke_prev = e.kinetic;
+        vz_prev = vz;
+      });
+      report("S5 drop at %.0f m/s, dt %.0e: contact work as applied against the kinetic energy, largest difference "
+             "%.3g J (of %.3g J thrown in; the contact took up to %.3g J; the trapezoidal estimate differs by up to %.3g J)",
+             v, dt, worst, ke0, -deepest, trapezoidal);
+      INFO("v " << v << " dt " << dt);
+      CHECK(deepest < -0.5 * ke0);  // the block did land and the contact took its energy
+      CHECK(worst < 1e-7 * ke0);
     }
 }

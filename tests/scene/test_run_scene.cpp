@@ -157,7 +157,8 @@ json check_outputs(const std::string& out, const SceneSpec& spec, bool expect_fi
     for (const char* c : {"_x", "_y", "_z"}) CHECK(markers.has(m.name + c));
   const CsvTable sections = check_csv(out + "/sectional_forces.csv", {});
   const CsvTable energy = check_csv(out + "/energy.csv", {"kinetic", "strain", "gravity_potential", "external_work",
-                                                         "contact_work", "damping_work", "plastic_work", "imbalance"});
+                                                         "contact_work", "damping_work", "plastic_work", "imbalance",
+                                                         "contact_work_applied"});
   // The first row is the state before any step: nothing has been gained or lost yet.
   CHECK(energy.column("imbalance").front() == 0.0);
   const json fin = read_json(out + "/final_state.json");
@@ -716,6 +717,26 @@ TEST_CASE("final states: an item on a slippery floor under a strong pulse slides
       CHECK(it.tilt_deg < 2.0);
     }
   }
+}
+
+TEST_CASE("energy created by the contact is judged by its work as applied, not by the trapezoidal estimate",
+          "[runner][energy]") {
+  // A landing as measured on a rigid block (tests/contact_dynamics/stiff_law.cpp): the trapezoidal
+  // estimate of the contact's work shows +30 J of 100 while the work the integrator applied is -5 J
+  // (the imbalance, -35 J, holds the difference). Nothing was created: no diagnosis. With +30 J applied
+  // the contact did feed the items, and the diagnosis says so with that figure.
+  EnergyLedger E;
+  E.initial_total = 100;
+  E.gravity_potential = 60;
+  E.contact_work = 30;
+  E.contact_work_applied = -5;
+  ContactStepEstimate est;
+  est.dt = 1e-3;
+  est.item = "tall_cabinet";
+  CHECK(energy_creation_diagnosis(E, 1e-3, 0.25, est).empty());
+  E.contact_work_applied = 30;
+  const std::string why = energy_creation_diagnosis(E, 1e-3, 0.25, est);
+  CHECK_THAT(why, Catch::Contains("energy is being created") && Catch::Contains("30 J of net positive work"));
 }
 
 TEST_CASE("a completed run that lost too much energy carries a warning naming the cause", "[runner][energy]") {

@@ -28,6 +28,11 @@ struct EnergyLedger {
   double kinetic = 0, strain = 0, gravity_potential = 0;
   double external_work = 0;   // base excitation inertial forces and nodal loads
   double contact_work = 0;    // work of contact forces (negative: friction and damping dissipate)
+  // The contact forces' work as the integrator applied it (Simulation::StepWork): what the contact gave
+  // the items (positive) or took from them. contact_work is the trapezoidal rule on the increment, an
+  // estimate of the law's own work; where the contact comes on or lets go within a step the two differ by
+  // what the scheme adds or takes there, which the imbalance then shows. Not in the imbalance.
+  double contact_work_applied = 0;
   double damping_work = 0;    // work of viscous damping (negative)
   double plastic_work = 0;    // dissipated in plastic hinges (positive)
   double initial_total = 0;

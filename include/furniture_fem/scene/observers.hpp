@@ -516,12 +516,12 @@ class EnergyHistory : public RowHistory {
   std::string file() const override { return "energy.csv"; }
   std::vector<std::string> columns(const RunView&) const override {
     return {"t", "kinetic", "strain", "gravity_potential", "external_work", "contact_work", "damping_work", "plastic_work",
-            "imbalance"};
+            "imbalance", "contact_work_applied"};
   }
   void write_row(const RunView& run) override {
     const EnergyLedger& E = run.row_energy;
     csv().row({run.sim.time(), E.kinetic, E.strain, E.gravity_potential, E.external_work, E.contact_work, E.damping_work,
-               E.plastic_work, E.imbalance()});
+               E.plastic_work, E.imbalance(), E.contact_work_applied});
   }
 };
 

@@ -368,7 +368,9 @@ inline std::string energy_creation_diagnosis(const EnergyLedger& E, double dt, d
                                              const ContactStepEstimate& est) {
   if (!(limit > 0)) return {};
   const double scale = E.scale(), imbalance = E.imbalance();
-  const bool by_contact = E.contact_work > limit * scale, by_integrator = imbalance > limit * scale;
+  // The contact's work as applied: the trapezoidal estimate can be positive at an impact in which the
+  // items gained nothing (docs/core/theory.md, "Energy ledger").
+  const bool by_contact = E.contact_work_applied > limit * scale, by_integrator = imbalance > limit * scale;
   if (!by_contact && !by_integrator) return {};
   const auto fmt = [](double v) {
     std::ostringstream o;
@@ -378,8 +380,8 @@ inline std::string energy_creation_diagnosis(const EnergyLedger& E, double dt, d
   };
   std::string why = "energy is being created: ";
   if (by_contact)
-    why += "the contact forces have done " + fmt(E.contact_work) + " J of net positive work (" +
-           fmt(100 * E.contact_work / scale) + " % of the energy ledger's scale, " + fmt(scale) + " J)";
+    why += "the contact forces have done " + fmt(E.contact_work_applied) + " J of net positive work (" +
+           fmt(100 * E.contact_work_applied / scale) + " % of the energy ledger's scale, " + fmt(scale) + " J)";
   else
     why += "the energy ledger's imbalance is +" + fmt(imbalance) + " J (" + fmt(100 * imbalance / scale) +
            " % of its scale, " + fmt(scale) + " J)";
