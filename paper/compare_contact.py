@@ -5,14 +5,16 @@ rigid, with the scene's own contact law (the paper's) and with `stiff`: 3 x 3 x 
     python3 paper/compare_contact.py [--furniture-quake PATH] [--scratch DIR] [--cases a,b,c]
                                      [--fidelities full,auto,rigid] [--laws paper,stiff]
                                      [--duration S] [--skip-existing] [--nice N]
-                                     [--not-run FIDELITY:LAW,...]
+                                     [--not-run FIDELITY:LAW,...] [--plane-contact-at surfaces]
 
 Writes the scene variants and the runs' outputs to --scratch (default /tmp/ffem_contact_comparison),
 runs them one after the other (niced), and writes paper/results/contact_comparison.md (a table per
 case: rows = bodies, columns = fidelity x law, cells "state, slide m, tilt deg") and
 paper/results/contact_comparison.csv (one row per run and body: every final_state field, the run's
 wall seconds and status). Standard library only. When the JMA-Kobe records the scenes name are
-absent it says so in one line and exits 0.
+absent it says so in one line and exits 0. With --plane-contact-at surfaces every variant's rigid items
+touch the floor and walls at their members' surfaces (docs/contact/contact.md, "At the surface"; `full`
+has no rigid item and is an error then); the files are then contact_comparison_surfaces.md and .csv.
 """
 import argparse
 import copy
@@ -57,12 +59,14 @@ def stiff_contact(contact):
     return out
 
 
-def variant(scene, scene_dir, fidelity, law):
+def variant(scene, scene_dir, fidelity, law, plane_contact_at="centre_lines"):
     s = copy.deepcopy(scene)
     for it in s["items"]:
         it["fidelity"] = fidelity
     if law == "stiff":
         s["contact"] = stiff_contact(s.get("contact", {}))
+    if plane_contact_at != "centre_lines":
+        s.setdefault("contact", {})["plane_contact_at"] = plane_contact_at
     # Record paths are relative to the scene file: make them absolute for the scratch copy.
     files = s.get("ground_motion", {}).get("files", {})
     for ax, f in files.items():
@@ -105,7 +109,9 @@ def main():
     ap.add_argument("--results", default=os.path.join(HERE, "results"))
     ap.add_argument("--not-run", default="", help="columns left out of the runs, shown as 'not run' "
                     "(e.g. full:stiff, whose 12 s runs take about 40 min each)")
+    ap.add_argument("--plane-contact-at", default="centre_lines", choices=["centre_lines", "surfaces"])
     a = ap.parse_args()
+    suffix = "" if a.plane_contact_at == "centre_lines" else "_" + a.plane_contact_at
     not_run = {tuple(x.split(":")) for x in a.not_run.split(",") if x}
     cases = a.cases.split(",")
     fids = a.fidelities.split(",")
@@ -133,11 +139,11 @@ def main():
             for law in laws:
                 if (fid, law) in not_run:
                     continue
-                name = "config3_%s_%s_%s" % (c, fid, law)
+                name = "config3_%s_%s_%s%s" % (c, fid, law, suffix)
                 spath = os.path.join(a.scratch, name + ".json")
                 odir = os.path.join(a.scratch, name)
                 with open(spath, "w") as f:
-                    json.dump(variant(scene, scene_dir, fid, law), f, indent=2)
+                    json.dump(variant(scene, scene_dir, fid, law, a.plane_contact_at), f, indent=2)
                 summ = os.path.join(odir, "summary.json")
                 if not (a.skip_existing and os.path.isfile(summ)):
                     os.makedirs(odir, exist_ok=True)
@@ -162,7 +168,7 @@ def main():
     os.makedirs(a.results, exist_ok=True)
     fields = ["item", "state", "slide_m", "tilt_deg", "max_tilt_deg", "lift_m", "resting_on",
               "cog_dx_m", "cog_dy_m", "cog_dz_m"]
-    with open(os.path.join(a.results, "contact_comparison.csv"), "w", newline="") as f:
+    with open(os.path.join(a.results, "contact_comparison%s.csv" % suffix), "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["case", "fidelity", "law", "contact_law"] + fields + ["wall_s", "status", "t_end_s"])
         for c, fid, law, summ, final in runs:
@@ -184,7 +190,9 @@ def main():
           "an item rigid unless a sectional force of it is asked for: here the desk stays flexible.",
           "Cell: final state, slide (m), final tilt (deg) at 12 s; a run that stopped early (status not",
           "`completed`) shows its status and when it stopped. Last row: wall time of the run (s) and status.",
-          "Per-body numbers of every run, stopped ones included: contact_comparison.csv.", ""]
+          "Per-body numbers of every run, stopped ones included: contact_comparison%s.csv." % suffix,
+          "Floor and wall contact of rigid items at their members' %s (`plane_contact_at`)."
+          % ("centre lines" if not suffix else "surfaces"), ""]
     for c in cases:
         md += ["## Case %s" % CASE_TITLE.get(c, c), ""]
         md.append("| body | " + " | ".join("%s, %s" % fc for fc in cols) + " |")
@@ -202,9 +210,9 @@ def main():
             "%.1f (%s)" % (by[fc][0].get("wall_seconds", float("nan")), by[fc][0].get("status", "?"))
             if fc in by else "not run" for fc in cols) + " |")
         md.append("")
-    with open(os.path.join(a.results, "contact_comparison.md"), "w") as f:
+    with open(os.path.join(a.results, "contact_comparison%s.md" % suffix), "w") as f:
         f.write("\n".join(md))
-    print("wrote %s and contact_comparison.csv" % os.path.join(a.results, "contact_comparison.md"))
+    print("wrote %s and its .csv" % os.path.join(a.results, "contact_comparison%s.md" % suffix))
     return 0
 
 

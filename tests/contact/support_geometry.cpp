@@ -66,3 +66,55 @@ TEST_CASE("a box's support geometry is the same to the bit whatever the order of
     CHECK(same(detail::support_geometry(m, nodes), reference));
   }
 }
+
+TEST_CASE("at the members' surfaces, two box frames touch planes at their envelopes' corners", "[contact][support][surface]") {
+  // Two rigid frames of 50 x 50 mm tubes (the second turned by 30 deg about z, away from the first):
+  // with RoomContact::surface each one's support points are the 8 corners of its outer envelope,
+  // 25 mm outside its members' centre lines along its own axes, each point owned by a node of its body.
+  Model m;
+  const int sec = m.add_section(Section::hollow_rectangle(0.05, 0.05, 0.002, "50 x 50")), mat = m.add_material(Material::steel());
+  const double c = 0.025, a = 0.4, b = 0.3, h = 0.6;
+  std::vector<std::vector<Vec3>> envelopes;
+  for (int k = 0; k < 2; ++k) {
+    const int body = m.add_body("frame " + std::to_string(k));
+    const double yaw = k == 0 ? 0.0 : std::acos(-1.0) / 6;
+    const Mat3 R = Eigen::AngleAxisd(yaw, Vec3::UnitZ()).toRotationMatrix();
+    const Vec3 origin(2.0 * k, 0, c);
+    int corner[8];
+    std::vector<Vec3> envelope;
+    for (int i = 0; i < 8; ++i) {
+      const Vec3 s((i & 1) ? 1 : -1, (i & 2) ? 1 : -1, (i & 4) ? 1 : -1);
+      const Vec3 local(0.5 * a * s.x(), 0.5 * b * s.y(), 0.5 * h * (s.z() + 1));
+      corner[i] = m.add_node(origin + R * local, body);
+      envelope.push_back(origin + R * (local + c * s));
+    }
+    envelopes.push_back(envelope);
+    MemberOptions o;
+    o.target_length = 0.1;
+    for (int i = 0; i < 8; ++i)
+      for (int bit : {1, 2, 4})
+        if (!(i & bit)) m.add_member("edge", corner[i], corner[i | bit], sec, mat, o);
+  }
+  RoomContact<PaperLaw> contact(m, {BodyContact{}, BodyContact{}}, {RigidPlane{}});
+  contact.surface = true;
+  contact.set_rigid(m, 0);
+  contact.set_rigid(m, 1);
+  const auto& points = contact.surface_points();
+  REQUIRE(points.size() == 16);
+  for (int k = 0; k < 2; ++k) {
+    for (int i = 0; i < 8; ++i) {
+      const auto& p = points[8 * k + i];
+      CHECK(m.node(p.node).body == k);
+      const Vec3 x = m.node(p.node).X + p.arm0;
+      double nearest = 1e300;
+      for (const Vec3& e : envelopes[k]) nearest = std::min(nearest, (e - x).norm());
+      INFO("frame " << k << ", point " << i << " at " << x.transpose());
+      CHECK(nearest < 1e-12);
+    }
+  }
+  // Every corner is some point's (8 distinct points per frame).
+  for (int k = 0; k < 2; ++k)
+    for (const Vec3& e : envelopes[k])
+      CHECK(std::any_of(points.begin() + 8 * k, points.begin() + 8 * k + 8,
+                        [&](const auto& p) { return (m.node(p.node).X + p.arm0 - e).norm() < 1e-12; }));
+}

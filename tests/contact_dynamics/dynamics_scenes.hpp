@@ -220,6 +220,14 @@ inline ContactParams paper_params(double mass, double mu, double v_reg) {
 
 // The tangential spring of the stick-slip law for a rigid block of mass M on n contacts: the
 // block's tangential mode has omega_t^2 = n k_t / M and damping ratio zeta_t (n c_t = 2 zeta_t M omega_t).
+// The `stiff` rule as the scenes set it (set_stiff_contact), with the scenes' stick length.
+inline ContactParams stiff_params(const Box& b, double mu) {
+  ContactParams p = paper_params(b.mass, mu, 1e-3);
+  p.stick_length = 1e-5;
+  set_stiff_contact(*b.model, b.body, p);
+  return p;
+}
+
 inline void set_stick_spring(ContactParams& p, double mass, int n, double omega_t, double zeta_t) {
   p.k_t = mass * omega_t * omega_t / n;
   p.c_t = 2 * zeta_t * mass * omega_t / n;

@@ -32,12 +32,7 @@ const Newmark paper_newmark = Newmark::paper();
 const BoxSpec medium_block{0.4, 0.3, 0.8, Vec3::Zero(), 0.1, 0.05};
 const BoxSpec tall_block{0.45, 0.4, 1.2, Vec3::Zero(), 0.1, 0.1};
 
-ContactParams stiff(const Box& b, double mu) {
-  ContactParams p = paper_params(b.mass, mu, 1e-3);
-  p.stick_length = 1e-5;  // the scenes' default
-  set_stiff_contact(*b.model, b.body, p);
-  return p;
-}
+ContactParams stiff(const Box& b, double mu) { return stiff_params(b, mu); }
 
 // A rigid block rocking on its toe (the pivot line x = +bx/2 at the nodes' centre line), theta its
 // lean towards the toe, under a table acceleration a(t) along -X (the inertial force pushes towards

@@ -323,3 +323,76 @@ TEST_CASE("run_scene reports a points motion's peaks", "[scene][points][runner]"
   const json summary = json::parse(std::string(std::istreambuf_iterator<char>(f), {}));
   CHECK(summary.at("ground_motion_peak_m_s2") == json::array({2.0, 0.0, 1.5}));
 }
+
+namespace {
+
+// The largest tilt (deg) of the paper's tall cabinet, rigid, mu 2 (it rocks, never slides), `stiff`
+// law, under a table acceleration along its depth applied within 1 ms at 0.3 s and held: `level`
+// times g b/h of its envelope, b = cog_d1 = 178 mm to the front edge (forward, table towards +Y) or
+// cog_d2 = 222 mm to the back edge (backward), h = cog_h = 925 mm (Table 2).
+double tall_cabinet_largest_tilt(double level, bool forward, const std::string& plane_contact_at) {
+  const double b = forward ? 0.178 : 0.222, a = (forward ? 1 : -1) * level * g * b / 0.925;
+  const json j = {{"name", "tall cabinet tipping"},
+                  {"items", {{{"kind", "tall_cabinet"}, {"name", "tall"}, {"fidelity", "rigid"},
+                              {"params", {{"mu_floor_long", 2.0}, {"mu_floor_short", 2.0}}}}}},
+                  {"ground_motion", {{"source", "points"}, {"x", {{0.0, 0.0}, {5.0, 0.0}}}, {"y", {{0.3, 0.0}, {0.301, a}, {5.0, a}}}}},
+                  {"duration", 2.5},
+                  {"dt", 0.001},
+                  {"contact", {{"law", "stiff"}, {"plane_contact_at", plane_contact_at}}},
+                  {"outputs", {{"figures", false}}}};
+  const SceneSpec spec = parse_scene_json(j, "tall.json");
+  validate(spec);
+  SceneSimulation<SpringDashpotLaw, DirectLdltSolver> scene(spec);
+  const int node = scene.model->body(scene.items[0].body).nodes.front();
+  double largest = 0;
+  while (scene.sim->time() < 2.5 - 1e-9) {
+    scene.sim->step();
+    const double tilt = std::acos(std::clamp(scene.sim->rotation(node)(2, 2), -1.0, 1.0)) * 180 / std::acos(-1.0);
+    largest = std::max(largest, tilt);
+  }
+  return largest;
+}
+
+}  // namespace
+
+TEST_CASE("a rigid cabinet touching the floor at its members' surfaces tips at g b/h of its envelope",
+          "[scene][surface][dynamics]") {
+  // Its 50 mm tubes' centre lines lie 25 mm inside and above the envelope: at "centre_lines" it pivots
+  // there and tips at g (b - 25 mm) / (h - 25 mm), 11.7 % (forward) and 8.6 % (backward) below g b/h.
+  // At "surfaces" its support points are the envelope's corners: within 1 % of g b/h (measured: stands
+  // at 0.995, tips at 1.005 forward).
+  // Tipping: past the tilt atan(b/h) at which the centre of gravity is over the edge (11 and 13.5 deg),
+  // with the acceleration still pushing, it falls (near the threshold it takes seconds: 34 and 42 deg
+  // after 2.2 s at 1.01).
+  for (const bool forward : {true, false}) {
+    const double falls = std::atan((forward ? 0.178 : 0.222) / 0.925) * 180 / std::acos(-1.0) + 5;
+    const double below = tall_cabinet_largest_tilt(0.99, forward, "surfaces");
+    const double above = tall_cabinet_largest_tilt(1.01, forward, "surfaces");
+    const double centre_lines = tall_cabinet_largest_tilt(0.95, forward, "centre_lines");
+    INFO((forward ? "forward" : "backward") << ": largest tilt at 0.99 g b/h " << below << " deg, at 1.01 " << above
+                                            << " deg; centre lines at 0.95: " << centre_lines << " deg");
+    CHECK(below < 1.0);
+    CHECK(above > falls);
+    CHECK(centre_lines > falls);
+  }
+}
+
+TEST_CASE("contact.plane_contact_at: read, written back, named errors", "[scene][surface][errors]") {
+  json j = block_scene(ramp);
+  j["contact"] = {{"plane_contact_at", "surfaces"}};
+  const SceneSpec s = parse_scene_json(j, "surface.json");
+  CHECK(s.contact.plane_contact_at == PlaneContactAt::surfaces);
+  CHECK(parse_scene_json(to_json(s), "again.json").contact.plane_contact_at == PlaneContactAt::surfaces);
+  CHECK(parse_scene_json(block_scene(ramp), "default.json").contact.plane_contact_at == PlaneContactAt::centre_lines);
+  j["contact"]["plane_contact_at"] = "surface";
+  CHECK_THAT(read_error(j), Contains("contact.plane_contact_at") && Contains("surfaces"));
+  // A scene with no rigid item: the key would change nothing.
+  json full = {{"name", "a full desk"},
+               {"items", {{{"kind", "desk"}, {"name", "desk"}, {"fidelity", "full"}}}},
+               {"ground_motion", ramp},
+               {"duration", 1.0},
+               {"contact", {{"plane_contact_at", "surfaces"}}}};
+  CHECK_THAT(read_error(full), Contains("contact.plane_contact_at") && Contains("no item is rigid"));
+  full["items"][0]["fidelity"] = "rigid";
+  CHECK(read_error(full) == "no error");
+}

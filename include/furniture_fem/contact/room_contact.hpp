@@ -15,6 +15,9 @@
 // vertices of its nodes' convex hull only, its support points (a box's eight corners), not its mesh:
 // the vertices of the hull face turned towards a plane each stand for an equal share of the nodes on
 // that face, so a body resting on a face is held as with every node (docs/contact/contact.md).
+// With `surface`, a rigid body's support points are the hull's vertices of cubes of half a member's
+// width around its nodes (its outer envelope: a cabinet tips about its outer edge), each force put at
+// its point with the moment that carries it to the node (docs/contact/contact.md, "At the surface").
 // Each body carries its own parameters (alpha, Dc, mu on the floor along its longer and shorter edge,
 // mu against walls); between two items the paper's mu between furniture applies, with alpha and Dc
 // the mean of the two items' values (the paper leaves this open; docs/contact/contact.md).
@@ -85,6 +88,9 @@ class RoomContact {
   // re-evaluated at the end of a carried-over step). false: every contact force is a load evaluated
   // at the step's predictor, as the paper's code does (docs/contact/implicit_contact.md).
   bool implicit = true;
+  // Rigid bodies touch the floor and walls at their members' surfaces, not their centre lines (set
+  // before set_rigid; flexible bodies keep the centre lines).
+  bool surface = false;
 
   RoomContact() = default;
   RoomContact(const Model& model, std::vector<BodyContact> bodies, std::vector<RigidPlane> planes, Law law = {})
@@ -127,12 +133,20 @@ class RoomContact {
   void set_rigid(const Model& model, int body, bool rigid = true) {
     if (support_.empty()) return;  // default-constructed: no bodies, nothing to test
     const auto& nodes = model.body(body).nodes;
-    support_.at(body) = rigid ? detail::support_geometry(model, nodes) : detail::SupportGeometry{};
     rigid_.at(body) = rigid;
     for (int n : nodes) plane_node_[n] = !rigid;
-    for (int n : support_[body].vertices) plane_node_[n] = 1;
+    if (rigid && surface) {
+      support_.at(body) = detail::SupportGeometry{};
+      rebuild_surface_points(model);
+    } else {
+      support_.at(body) = rigid ? detail::support_geometry(model, nodes) : detail::SupportGeometry{};
+      for (int n : support_[body].vertices) plane_node_[n] = 1;
+      if (!surface_.empty() && !surface_[body].geometry.vertices.empty()) rebuild_surface_points(model);
+    }
     select_plane_nodes();
   }
+  // The support points of rigid bodies at their surfaces (all bodies, in body order).
+  const std::vector<detail::SurfacePoint>& surface_points() const { return surface_points_; }
   // The nodes tested against the floor and walls (all but rigid bodies' inner nodes), ascending.
   const std::vector<int>& plane_nodes() const { return plane_nodes_; }
 
@@ -173,7 +187,7 @@ class RoomContact {
   const std::vector<PairContactTangent>& pair_tangents() const { return pair_tangents_; }
   // The floor and wall forces of the last add_forces on implicit bodies' nodes (node, force; a node
   // against two planes appears twice).
-  const std::vector<std::pair<int, Vec3>>& plane_forces() const { return plane_applied_; }
+  const std::vector<std::pair<int, Vec6>>& plane_forces() const { return plane_applied_; }
 
   // One implicit body's floor and wall contacts at another state of the step (a trial of its solve),
   // from the committed history, nothing recorded: each contact's force and linearisation, and the
@@ -181,7 +195,7 @@ class RoomContact {
   // none (empty status). last_status(body) gives the statuses of the last add_forces, in the same order.
   struct BodyPlaneContacts {
     std::vector<NodalContactTangent> tangents;  // per contact (a node against two planes: twice)
-    std::vector<Vec3> forces;                   // the force of each of those contacts
+    std::vector<Vec6> forces;                   // the force and moment of each on its node
     std::vector<char> status;
   };
   BodyPlaneContacts body_plane_contacts(const ContactView& view, int body) const {
@@ -191,7 +205,14 @@ class RoomContact {
       out.status.push_back(status_of(cf));
       if (cf.in_contact) {
         out.tangents.push_back({n, cf.K, cf.C, view.x[n], Vec3(view.v.template segment<3>(6 * n))});
-        out.forces.push_back(cf.on_a);
+        out.forces.push_back(wrench(cf.on_a));
+      }
+      return false;
+    }, [&](const detail::SurfacePoint& pt, std::size_t, const PointContact& pc) {
+      out.status.push_back(status_of(pc.force));
+      if (pc.force.in_contact) {
+        out.tangents.push_back({pt.node, pc.force.K, pc.force.C, pc.x, pc.v, pt.arm0});
+        out.forces.push_back(wrench(pc.force.on_a, pc.arm));
       }
       return false;
     });
@@ -203,14 +224,19 @@ class RoomContact {
     if (!implicit || !bodies_[body].implicit || plane_status_.empty()) return false;
     return any_body_plane_force(view, body, [&](int n, std::size_t p, const ContactForce& cf) {
       return status_of(cf) != plane_status_[n * planes_.size() + p];
+    }, [&](const detail::SurfacePoint& pt, std::size_t p, const PointContact& pc) {
+      return status_of(pc.force) != point_status_[point_index(pt) * planes_.size() + p];
     });
   }
   std::vector<char> last_status(const Model& model, int body) const {
     std::vector<char> status;
     if (!implicit || !bodies_[body].implicit || plane_status_.empty()) return status;
-    for (size_t p = 0; p < planes_.size(); ++p)
+    for (size_t p = 0; p < planes_.size(); ++p) {
       for (int n : model.body(body).nodes)
         if (plane_node_[n]) status.push_back(plane_status_[n * planes_.size() + p]);
+      if (!surface_.empty())
+        for (int sp : surface_[body].points) status.push_back(point_status_[sp * planes_.size() + p]);
+    }
     return status;
   }
 
@@ -222,7 +248,7 @@ class RoomContact {
   void end_of_step(const ContactView& view, Eigen::VectorXd& f) {
     if (!implicit) return;
     if (!plane_applied_.empty()) {
-      for (const auto& [n, force] : plane_applied_) f.template segment<3>(6 * n) -= force;
+      for (const auto& [n, w] : plane_applied_) f.template segment<6>(6 * n) -= w;
       std::erase_if(pair_forces_, [&](const PairForce& pf) {
         return (pf.body_b == floor_id || pf.body_b == wall_id) && bodies_[pf.body_a].implicit;
       });
@@ -248,6 +274,7 @@ class RoomContact {
     // No copy back into node_trial_: add_forces overwrites every entry of it (reset out of contact,
     // the committed state in contact) before the law reads it.
     node_state_.swap(node_trial_);
+    point_state_.swap(point_trial_);
     pair_state_.swap(pair_trial_);  // pairs out of contact forget their history
     pair_trial_.clear();
   }
@@ -260,6 +287,7 @@ class RoomContact {
   friend void transfer_state(Self& c, Archive& ar) {
     ar(c.node_state_, c.node_trial_, c.pair_state_, c.pair_trial_, c.candidates_, c.x_broad_);
     ar(c.pair_forces_, c.tangents_, c.pair_tangents_, c.implicit_pairs_, c.plane_applied_, c.plane_status_, c.share_);
+    ar(c.point_state_, c.point_trial_, c.point_status_, c.point_share_);
     ar(c.steps_, c.broad_runs_, c.active_);
   }
 
@@ -295,9 +323,9 @@ class RoomContact {
         add_pair_force(body, planes_[p].is_wall ? wall_id : floor_id, cf.on_a);
         ++active_;
         if (!implicit || !bodies_[body].implicit) continue;
-        plane_applied_.emplace_back(n, cf.on_a);
+        plane_applied_.emplace_back(n, wrench(cf.on_a));
         const Vec3 v = view.v.template segment<3>(6 * n);
-        if (!tangents_.empty() && tangents_.back().node == n) {
+        if (!tangents_.empty() && tangents_.back().node == n && tangents_.back().at_node()) {
           tangents_.back().K += cf.K;
           tangents_.back().C += cf.C;
         } else {
@@ -305,6 +333,62 @@ class RoomContact {
         }
       }
     }
+    surface_point_contacts(view, f, only_implicit);
+  }
+
+  // Rigid bodies' surface points against planes (surface): as plane_contacts, each force at its point.
+  void surface_point_contacts(const ContactView& view, Eigen::VectorXd& f, bool only_implicit) {
+    for (std::size_t sp = 0; sp < surface_points_.size(); ++sp) {
+      const auto& pt = surface_points_[sp];
+      const int n = pt.node, body = view.model.node(n).body;
+      if (only_implicit && !bodies_[body].implicit) continue;
+      for (size_t p = 0; p < planes_.size(); ++p) {
+        const size_t si = sp * planes_.size() + p;
+        point_trial_[si] = point_state_[si];
+        const PointContact pc = point_plane_force(view, pt, p, point_share_[si], point_trial_[si]);
+        const ContactForce& cf = pc.force;
+        point_status_[si] = status_of(cf);
+        if (!cf.in_contact) continue;
+        const Vec3 moment = pc.arm.cross(cf.on_a);
+        f.template segment<3>(6 * n) += cf.on_a;
+        f.template segment<3>(6 * n + 3) += moment;
+        add_pair_force(body, planes_[p].is_wall ? wall_id : floor_id, cf.on_a);
+        ++active_;
+        if (!implicit || !bodies_[body].implicit) continue;
+        Vec6 w;
+        w << cf.on_a, moment;
+        plane_applied_.emplace_back(n, w);
+        tangents_.push_back({n, cf.K, cf.C, pc.x, pc.v, pt.arm0});
+      }
+    }
+  }
+
+  // A surface point against a plane: its position and velocity now (its offset turned with its node),
+  // the offset, and the law's force, the point standing for `share` nodes.
+  struct PointContact {
+    Vec3 x, v, arm;
+    ContactForce force;
+  };
+  PointContact point_plane_force(const ContactView& view, const detail::SurfacePoint& pt, size_t p, double share,
+                                 ContactState& state) const {
+    if (!view.rotations)
+      throw ModelError("RoomContact: contact at the members' surfaces needs the nodes' rotations in the ContactView");
+    const int n = pt.node;
+    PointContact pc;
+    pc.arm = (*view.rotations)[n] * pt.arm0;
+    pc.x = view.x[n] + pc.arm;
+    pc.v = view.v.template segment<3>(6 * n) + Vec3(view.v.template segment<3>(6 * n + 3)).cross(pc.arm);
+    const RigidPlane& pl = planes_[p];
+    // The law sees the node's distance as if the point were its contact surface: the point's distance
+    // to the plane plus the contact distance, so that contact starts when the point reaches the plane.
+    const double L = half_width_[n], l = (pc.x - pl.point).dot(pl.normal) + L;
+    if (l > L || !pl.contains_projection(pc.x)) {
+      state = ContactState{};
+      return pc;
+    }
+    const NodeOnPlane node{pc.x, pc.v, L, view.dt, long_axis(view.model.node(n).body, view), Vec3::Zero()};
+    pc.force = detail::node_force(law_, node, l, pl.normal, plane_params(view.model, n, p, share), state);
+    return pc;
   }
 
   // One node against one plane, standing for `share` nodes, from the history in `state` (advanced
@@ -318,16 +402,22 @@ class RoomContact {
       return {};
     }
     const int body = view.model.node(n).body;
+    // The tested node-against-plane evaluation (contact_laws.hpp), on this plane's distance; the
+    // plane's own extent test above decides whether a wall panel is reached.
+    const NodeOnPlane node{x, view.v.template segment<3>(6 * n), half_width_[n], view.dt, long_axis(body, view),
+                           Vec3::Zero()};
+    return detail::node_force(law_, node, l, pl.normal, plane_params(view.model, n, p, share), state);
+  }
+  // The parameters of node n's contact with plane p, standing for `share` nodes.
+  ContactParams plane_params(const Model& model, int n, size_t p, double share) const {
+    const RigidPlane& pl = planes_[p];
+    const int body = model.node(n).body;
     ContactParams prm = pl.is_wall ? bodies_[body].wall : bodies_[body].floor;
     if (!pl.is_wall && caster_[n] && bodies_[body].caster_mu >= 0) {
       prm.mu = prm.mu_long = prm.mu_short = bodies_[body].caster_mu;
     }
     if (share != 1.0) prm = scaled_penalty(prm, share);
-    // The tested node-against-plane evaluation (contact_laws.hpp), on this plane's distance; the
-    // plane's own extent test above decides whether a wall panel is reached.
-    const NodeOnPlane node{x, view.v.template segment<3>(6 * n), half_width_[n], view.dt, long_axis(body, view),
-                           Vec3::Zero()};
-    return detail::node_force(law_, node, l, pl.normal, prm, state);
+    return prm;
   }
 
   // A contact's status: 0 apart, 1 pushing (or any force, for a law that may pull), 2 touching with
@@ -349,10 +439,48 @@ class RoomContact {
       if (sg.faces.empty()) continue;
       for (size_t p = 0; p < np; ++p) {
         for (int n : sg.vertices) share_[n * np + p] = 1.0;
-        if (const auto* face = sg.face_towards(view.x, planes_[p].normal))
+        if (const auto* face = sg.face_towards([&](int n) -> const Vec3& { return view.x[n]; }, planes_[p].normal))
           for (int n : face->vertices) share_[n * np + p] = face->share;
       }
     }
+    for (const auto& bsur : surface_) {
+      if (bsur.geometry.faces.empty()) continue;
+      for (size_t p = 0; p < np; ++p) {
+        for (int sp : bsur.points) point_share_[sp * np + p] = 1.0;
+        if (const auto* face = bsur.geometry.face_towards([&](int sp) { return point_now(view, sp); }, planes_[p].normal))
+          for (int sp : face->vertices) point_share_[sp * np + p] = face->share;
+      }
+    }
+  }
+  // A surface point's position now.
+  Vec3 point_now(const ContactView& view, int sp) const {
+    const auto& pt = surface_points_[sp];
+    return view.x[pt.node] + (*view.rotations)[pt.node] * pt.arm0;
+  }
+  int point_index(const detail::SurfacePoint& pt) const { return static_cast<int>(&pt - surface_points_.data()); }
+  static Vec6 wrench(const Vec3& force, const Vec3& arm = Vec3::Zero()) {
+    Vec6 w;
+    w << force, arm.cross(force);
+    return w;
+  }
+
+  // Every rigid body's surface geometry again (set_rigid; before the first step, so no history is lost).
+  void rebuild_surface_points(const Model& model) {
+    surface_points_.clear();
+    surface_.assign(bodies_.size(), BodySurface{});
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+      if (!rigid_[b] || !surface) continue;
+      const std::size_t first = surface_points_.size();
+      // The geometry names the points by their place in the whole list.
+      surface_[b].geometry = detail::surface_support_geometry(model, model.body(static_cast<int>(b)).nodes, half_width_,
+                                                               surface_points_);
+      for (std::size_t i = first; i < surface_points_.size(); ++i) surface_[b].points.push_back(static_cast<int>(i));
+    }
+    const std::size_t m = surface_points_.size() * planes_.size();
+    point_state_.assign(m, ContactState{});
+    point_trial_ = point_state_;
+    point_status_.assign(m, 0);
+    point_share_.assign(m, 1.0);
   }
 
   // The parameters of a contact standing for `share` nodes: every force and tangent `share` times one node's.
@@ -387,16 +515,30 @@ class RoomContact {
 
   // f(node, plane, force) for each of a body's (node, plane) contacts, evaluated at the view's state
   // from the committed history, plane by plane and node by node; true as soon as f returns true.
-  template <class F>
-  bool any_body_plane_force(const ContactView& view, int body, F&& f) const {
+  // g(point, plane, contact) likewise for its surface points, after its nodes on each plane.
+  template <class F, class G>
+  bool any_body_plane_force(const ContactView& view, int body, F&& f, G&& g) const {
     const auto& sg = support_[body];
+    const auto share_on = [](const detail::SupportFace* face, int i) {
+      return face && std::find(face->vertices.begin(), face->vertices.end(), i) != face->vertices.end() ? face->share : 1.0;
+    };
     for (size_t p = 0; p < planes_.size(); ++p) {
-      const detail::SupportFace* face = sg.faces.empty() ? nullptr : sg.face_towards(view.x, planes_[p].normal);
+      const detail::SupportFace* face =
+          sg.faces.empty() ? nullptr : sg.face_towards([&](int n) -> const Vec3& { return view.x[n]; }, planes_[p].normal);
       for (int n : view.model.body(body).nodes) {
         if (!plane_node_[n]) continue;
-        const bool on_face = face && std::find(face->vertices.begin(), face->vertices.end(), n) != face->vertices.end();
         ContactState st = node_state_[n * planes_.size() + p];
-        if (f(n, p, node_plane_force(view, n, p, on_face ? face->share : 1.0, st))) return true;
+        if (f(n, p, node_plane_force(view, n, p, share_on(face, n), st))) return true;
+      }
+      if (surface_.empty() || surface_[body].points.empty()) continue;
+      const auto& geometry = surface_[body].geometry;
+      const detail::SupportFace* point_face =
+          geometry.faces.empty() ? nullptr
+                                 : geometry.face_towards([&](int sp) { return point_now(view, sp); }, planes_[p].normal);
+      for (int sp : surface_[body].points) {
+        ContactState st = point_state_[sp * planes_.size() + p];
+        if (g(surface_points_[sp], p, point_plane_force(view, surface_points_[sp], p, share_on(point_face, sp), st)))
+          return true;
       }
     }
     return false;
@@ -540,7 +682,18 @@ class RoomContact {
   };
   std::vector<ImplicitPair> implicit_pairs_;  // the pairs behind pair_tangents_
   std::vector<char> rigid_;                   // per body: set_rigid
-  std::vector<std::pair<int, Vec3>> plane_applied_;  // the floor and wall forces of the last evaluation
+  std::vector<std::pair<int, Vec6>> plane_applied_;  // the floor and wall forces (and moments) of the last evaluation
+  // Rigid bodies at their surfaces: per body its geometry over surface_points_ and its points' range;
+  // per point and plane, as node_state_ ... for nodes.
+  struct BodySurface {
+    detail::SupportGeometry geometry;
+    std::vector<int> points;  // indices into surface_points_
+  };
+  std::vector<BodySurface> surface_;  // per body; empty geometry unless rigid with `surface`
+  std::vector<detail::SurfacePoint> surface_points_;
+  std::vector<ContactState> point_state_, point_trial_;
+  std::vector<char> point_status_;
+  std::vector<double> point_share_;
   std::vector<char> plane_status_;  // per node and plane: status_of its contact at the last evaluation
   bool pair_history_ = false;
   std::vector<Vec3> x_broad_;  // node positions at the last broad phase

@@ -75,6 +75,7 @@ struct ContactView {
   const Eigen::VectorXd& v;        // nodal velocities (6 per node, angular in world axes)
   double time;
   double dt;
+  const std::vector<Mat3>* rotations = nullptr;  // nodal rotations (contact points off a node turn with it)
 };
 
 struct NoContact {
@@ -98,11 +99,17 @@ concept ContactPolicy = requires(C c, const ContactView& view, Eigen::VectorXd& 
 // evaluated at: f(x + dx, v + dv) ~ f - K dx - C dv. A contact policy that offers these
 // (nodal_tangents()) has them inside the implicit step: each body's solve adds them to its
 // effective matrix as a low-rank update of its factorisation (docs/contact/implicit_contact.md).
+// A contact at a point off its node (a rigid body's member surface) gives arm0, the point's offset in
+// the node's initial frame: x and v are then the point's, which moves with the node's rotation too
+// (dx_point = dx + dtheta x arm), and the force acts there (a moment arm x f on the node). Only
+// rigid bodies' contacts may have one.
 struct NodalContactTangent {
   static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
   int node = -1;
   Mat3 K = Mat3::Zero(), C = Mat3::Zero();
   Vec3 x = Vec3::Zero(), v = Vec3::Zero();
+  Vec3 arm0 = Vec3::Zero();
+  bool at_node() const { return arm0.x() == 0 && arm0.y() == 0 && arm0.z() == 0; }
 };
 
 // The linearisation of an item-item contact force about the state it was evaluated at: the force F
@@ -144,11 +151,11 @@ concept ImplicitContactPolicy = ContactPolicy<C> && requires(C c, const ContactV
 template <class C>
 concept BodyPlaneContactPolicy = ImplicitContactPolicy<C> && requires(const C c, const ContactView& view, const Model& m) {
   { c.body_plane_contacts(view, 0).tangents } -> std::convertible_to<const std::vector<NodalContactTangent>&>;
-  { c.body_plane_contacts(view, 0).forces } -> std::convertible_to<const std::vector<Vec3>&>;
+  { c.body_plane_contacts(view, 0).forces } -> std::convertible_to<const std::vector<Vec6>&>;
   { c.body_plane_contacts(view, 0).status } -> std::convertible_to<const std::vector<char>&>;
   { c.body_plane_status_changed(view, 0) } -> std::convertible_to<bool>;
   { c.last_status(m, 0) } -> std::convertible_to<std::vector<char>>;
-  { c.plane_forces() } -> std::convertible_to<const std::vector<std::pair<int, Vec3>>&>;
+  { c.plane_forces() } -> std::convertible_to<const std::vector<std::pair<int, Vec6>>&>;
 };
 
 template <class Element, class Integrator = Newmark, class LinearSolver = DirectLdltSolver, class Contact = NoContact>
@@ -498,7 +505,7 @@ class Simulation {
   void resolve_changed_contacts(std::span<const int> members) {
     if constexpr (BodyPlaneContactPolicy<Contact>) {
       if (opt_.contact_iterations <= 0 || static_) return;
-      const ContactView at_end{model_, x_, v_, t_state_, opt_.dt};
+      const ContactView at_end{model_, x_, v_, t_state_, opt_.dt, &R_};
       if (std::none_of(members.begin(), members.end(), [&](int b) { return contact_.body_plane_status_changed(at_end, b); }))
         return;  // the usual case, checked without allocating
       const size_t n = members.size();
@@ -507,7 +514,7 @@ class Simulation {
       std::vector<typename Contact::BodyPlaneContacts> used(n), now(n);
       bool iterated = false;
       for (int it = 0; it < opt_.contact_iterations && !sums_[members.front()].solve_failed; ++it) {
-        const ContactView view{model_, x_, v_, t_state_, opt_.dt};
+        const ContactView view{model_, x_, v_, t_state_, opt_.dt, &R_};
         bool changed = false;
         for (size_t i = 0; i < n; ++i) {
           now[i] = contact_.body_plane_contacts(view, members[i]);
@@ -524,7 +531,7 @@ class Simulation {
       if (!iterated) return;
       for (const auto& u : used)
         for (const auto& t : u.tangents)  // the last evaluation's forces at the end state
-          fc1_.segment<3>(6 * t.node) -= t.K * (x_[t.node] - t.x) + t.C * (v_.segment<3>(6 * t.node) - t.v);
+          add_wrench(fc1_, t, plane_contact_shift(t));
     }
   }
   // Puts a body's plane contacts `now` in place of `used` (of the predictor's, the first time): their
@@ -532,8 +539,8 @@ class Simulation {
   template <class Contacts>
   void replace_plane_contacts(int b, Contacts& used, Contacts&& now, bool first) {
     if (first) remove_predictor_plane_forces(b);
-    for (size_t k = 0; k < used.forces.size(); ++k) fc1_.segment<3>(6 * used.tangents[k].node) -= used.forces[k];
-    for (size_t k = 0; k < now.forces.size(); ++k) fc1_.segment<3>(6 * now.tangents[k].node) += now.forces[k];
+    for (size_t k = 0; k < used.forces.size(); ++k) subtract_wrench(fc1_, used.tangents[k], used.forces[k]);
+    for (size_t k = 0; k < now.forces.size(); ++k) add_wrench(fc1_, now.tangents[k], now.forces[k]);
     contact_iterated_[b] = 1;
     used = std::move(now);
     set_body_contact_terms(systems_[b], used.tangents);
@@ -571,24 +578,55 @@ class Simulation {
   // predictor's state (linearised_contact_at_current_state).
   void remove_predictor_plane_forces(int b) {
     if constexpr (BodyPlaneContactPolicy<Contact>) {
-      for (const auto& [n, f] : contact_.plane_forces())
-        if (model_.node(n).body == b) fc1_.segment<3>(6 * n) -= f;
+      for (const auto& [n, w] : contact_.plane_forces())
+        if (model_.node(n).body == b) {
+          fc1_.segment<3>(6 * n) -= w.template head<3>();
+          if (has_moment(w)) fc1_.segment<3>(6 * n + 3) -= w.template tail<3>();
+        }
       const auto& tangents = contact_.nodal_tangents();
       for (size_t k = 0; k < tangents.size(); ++k)
-        if (model_.node(tangents[k].node).body == b) fc1_.segment<3>(6 * tangents[k].node) -= predictor_shift_[k];
+        if (model_.node(tangents[k].node).body == b) subtract_wrench(fc1_, tangents[k], predictor_shift_[k]);
     }
   }
-  // A body's effective-matrix contact terms (1 - af) (K + gamma / (beta dt) C), per node, from tangents.
+  // A body's effective-matrix contact terms (1 - af) (K + gamma / (beta dt) C), per node, from tangents
+  // (a contact off its node: a term of its own, at its point).
   void set_body_contact_terms(detail::BodySystem& bs, const std::vector<NodalContactTangent>& tangents) {
     const double kf = 1 - coef_.alpha_f, cf = coef_.gamma / (coef_.beta * opt_.dt);
     bs.contact.clear();
     for (const auto& t : tangents) {
       const int local = local_index_[t.node];
       const Mat3 k = kf * (t.K + cf * t.C);
-      const auto same = std::find_if(bs.contact.begin(), bs.contact.end(), [&](const auto& c) { return c.local == local; });
+      const auto same = std::find_if(bs.contact.begin(), bs.contact.end(),
+                                     [&](const auto& c) { return c.local == local && c.at_node() && t.at_node(); });
       if (same != bs.contact.end()) same->K += k;
-      else bs.contact.push_back({local, k});
+      else bs.contact.push_back({local, k, t.arm0});
     }
+  }
+
+  // A plane contact's force carried by its linearisation from its evaluation to the current state, as
+  // force and moment on its node: -(K d + C d') with d the contact point's displacement since.
+  Vec6 plane_contact_shift(const NodalContactTangent& t) const {
+    const int i = 6 * t.node;
+    Vec6 w;
+    if (t.at_node()) {
+      w << -(t.K * (x_[t.node] - t.x) + t.C * (v_.segment<3>(i) - t.v)), Vec3::Zero();
+      return w;
+    }
+    const Vec3 arm = R_[t.node] * t.arm0;
+    const Vec3 f = -(t.K * (x_[t.node] + arm - t.x) + t.C * (v_.segment<3>(i) + v_.segment<3>(i + 3).cross(arm) - t.v));
+    w << f, arm.cross(f);
+    return w;
+  }
+  // A contact's force and moment w into f on its node (a contact at its node: the force alone, so that
+  // f's moments are untouched to the bit).
+  static bool has_moment(const Vec6& w) { return w[3] != 0 || w[4] != 0 || w[5] != 0; }
+  static void add_wrench(Eigen::VectorXd& f, const NodalContactTangent& t, const Vec6& w) {
+    f.segment<3>(6 * t.node) += w.template head<3>();
+    if (!t.at_node()) f.segment<3>(6 * t.node + 3) += w.template tail<3>();
+  }
+  static void subtract_wrench(Eigen::VectorXd& f, const NodalContactTangent& t, const Vec6& w) {
+    f.segment<3>(6 * t.node) -= w.template head<3>();
+    if (!t.at_node()) f.segment<3>(6 * t.node + 3) -= w.template tail<3>();
   }
 
   int check_node(int n) const {
@@ -792,7 +830,7 @@ class Simulation {
   void contact_forces(double t, const Eigen::VectorXd& v, Eigen::VectorXd& f) {
     f.setZero();
     if constexpr (!std::is_same_v<Contact, NoContact>) {
-      const ContactView view{model_, x_, v, t, opt_.dt};
+      const ContactView view{model_, x_, v, t, opt_.dt, &R_};
       contact_.add_forces(view, f);
     }
     gather_contact_tangents();
@@ -809,8 +847,9 @@ class Simulation {
         auto& bs = systems_[model_.node(t.node).body];
         const Mat3 k = kf * (t.K + cf * t.C);
         const int local = local_index_[t.node];
-        if (!bs.contact.empty() && bs.contact.back().local == local) bs.contact.back().K += k;
-        else bs.contact.push_back({local, k});
+        if (!bs.contact.empty() && bs.contact.back().local == local && bs.contact.back().at_node() && t.at_node())
+          bs.contact.back().K += k;
+        else bs.contact.push_back({local, k, t.arm0});
       }
     }
     gather_rigid_groups();
@@ -934,10 +973,8 @@ class Simulation {
       const auto& tangents = contact_.nodal_tangents();
       predictor_shift_.resize(tangents.size());
       for (size_t k = 0; k < tangents.size(); ++k) {
-        const auto& t = tangents[k];
-        const int i = 6 * t.node;
-        predictor_shift_[k] = -(t.K * (x_[t.node] - t.x) + t.C * (v_.segment<3>(i) - t.v));
-        fc1_.segment<3>(i) += predictor_shift_[k];
+        predictor_shift_[k] = plane_contact_shift(tangents[k]);
+        add_wrench(fc1_, tangents[k], predictor_shift_[k]);
       }
     }
     if constexpr (PairTangentPolicy<Contact>) {
@@ -963,13 +1000,19 @@ class Simulation {
         const auto& t = tangents[k];
         if (contact_iterated_[model_.node(t.node).body]) continue;  // its fc1_ holds its end forces already
         const int i = 6 * t.node;
-        const Vec3 shift = -(t.K * (x_[t.node] - t.x) + t.C * (v_.segment<3>(i) - t.v));
-        const Vec3 delta = shift - predictor_shift_[k];
-        fc0_.segment<3>(i) += delta;
-        fnet0_.segment<3>(i) += delta;
-        ledger_.contact_work += 0.5 * Du_.segment<3>(i).dot(delta);
-        ledger_.contact_work_applied +=
-            applied.of_end_change(applied.path(Du_.segment<3>(i), vn_.segment<3>(i), v_.segment<3>(i)), delta);
+        const Vec6 delta6 = plane_contact_shift(t) - predictor_shift_[k];
+        const Vec3 delta = delta6.template head<3>();
+        add_wrench(fc0_, t, delta6);
+        add_wrench(fnet0_, t, delta6);
+        if (t.at_node()) {
+          ledger_.contact_work += 0.5 * Du_.segment<3>(i).dot(delta);
+          ledger_.contact_work_applied +=
+              applied.of_end_change(applied.path(Du_.segment<3>(i), vn_.segment<3>(i), v_.segment<3>(i)), delta);
+        } else {
+          ledger_.contact_work += 0.5 * Du_.segment<6>(i).dot(delta6);
+          ledger_.contact_work_applied +=
+              applied.of_end_change(applied.path(Du_.segment<6>(i), vn_.segment<6>(i), v_.segment<6>(i)), delta6);
+        }
       }
       if constexpr (PairTangentPolicy<Contact>) {
         const auto& pairs = contact_.pair_tangents();
@@ -985,7 +1028,7 @@ class Simulation {
         }
       }
       contact_delta_.setZero();
-      const ContactView view{model_, x_, v_, t_state_, opt_.dt};
+      const ContactView view{model_, x_, v_, t_state_, opt_.dt, &R_};
       contact_.end_of_step(view, contact_delta_);
     }
   }
@@ -1566,7 +1609,8 @@ class Simulation {
     static void add_contact_terms(const Simulation& sim, const detail::BodySystem& bs, const Vec3& c,
                                   Eigen::Matrix<double, 6, 6>& A) {
       for (const auto& ct : bs.contact) {
-        const Mat3 S = detail::skew(sim.x_[bs.nodes[ct.local]] - c);
+        const int n = bs.nodes[ct.local];
+        const Mat3 S = detail::skew(ct.at_node() ? Vec3(sim.x_[n] - c) : Vec3(sim.x_[n] + sim.R_[n] * ct.arm0 - c));
         A.template block<3, 3>(0, 0) += ct.K;
         A.template block<3, 3>(0, 3) -= ct.K * S;
         A.template block<3, 3>(3, 0) += S * ct.K;
@@ -1786,7 +1830,7 @@ class Simulation {
   std::vector<Mat3> rotary0_;      // initial rotary inertia tensors of the nodes with a point inertia
   Eigen::VectorXd v_, a_, vn_, an_, v_contact_, Du_, r_, fint_, fext0_, fext1_, fc0_, fc1_, fnet0_, mass_, nodal_load_, fgrav_;
   Eigen::VectorXd contact_delta_;
-  std::vector<Vec3> predictor_shift_;  // the linearised contact forces' shift from v_contact_ to v_ at the predictor
+  std::vector<Vec6> predictor_shift_;  // the linearised contact forces' shift from v_contact_ to v_ at the predictor
   std::vector<Vec3> pair_predictor_shift_;    // the same for the pairs of rigid groups
   std::vector<char> pair_active_;             // per pair tangent: inside a rigid group's solve
   std::vector<char> contact_iterated_;        // per body: this step's plane forces resolved at its end (fc1_)

@@ -24,6 +24,15 @@ inline Vec3 item_size(const ItemSpec& item) {
 
 // Builds item `index` of the scene into `model`: one ItemInfo per body (the separated cabinets give
 // "<name>/lower" then "<name>/upper"), with the item's contact overrides applied.
+// Whether a scene models an item as a rigid body: `rigid`, or `auto` when no sectional force of it is asked for.
+inline bool item_is_rigid(const SceneSpec& s, const ItemInfo& item) {
+  if (item.fidelity == Fidelity::rigid) return true;
+  if (item.fidelity != Fidelity::automatic) return false;
+  for (const auto& r : s.outputs.sectional_forces)
+    if (r.item == item.name) return false;
+  return true;
+}
+
 inline std::vector<ItemInfo> build_item(const SceneSpec& scene, size_t index, Model& model) {
   const ItemSpec& item = scene.items.at(index);
   const ItemParams& p = item.params;

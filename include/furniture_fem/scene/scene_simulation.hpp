@@ -247,15 +247,6 @@ inline double motion_end(const SceneSpec& s, const TableMotion& m) {
   return e;
 }
 
-// Whether a scene models an item as a rigid body: `rigid`, or `auto` when no sectional force of it is asked for.
-inline bool item_is_rigid(const SceneSpec& s, const ItemInfo& item) {
-  if (item.fidelity == Fidelity::rigid) return true;
-  if (item.fidelity != Fidelity::automatic) return false;
-  for (const auto& r : s.outputs.sectional_forces)
-    if (r.item == item.name) return false;
-  return true;
-}
-
 // Contact parameters of each body from its item's (Table 4 or rule) values, its law's set-up (the law's
 // record, scene/laws/) and the scene's overrides.
 inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Model& model,
@@ -493,6 +484,7 @@ struct SceneSimulation {
     items = build_scene(spec, *model);
     motion = scene_table_motion(spec, &motion_scale);
     RoomContact<Law> contact(*model, scene_body_contacts(spec, *model, items), scene_planes(spec));
+    contact.surface = spec.contact.plane_contact_at == PlaneContactAt::surfaces;
     for (std::size_t i = 0; i < spec.obstacles.size(); ++i)
       contact.add_obstacle(detail::scene_obstacle(spec, i));
     switch (spec.integrator.scheme) {

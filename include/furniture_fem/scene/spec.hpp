@@ -144,6 +144,11 @@ struct ContactOverrides {
 // factorisation: 1.6x on the main job), or none (the paper's explicit treatment).
 enum class ImplicitContact { none, rigid, all };
 
+// Where a rigid item touches the floor and walls: at its members' centre lines (the paper judges
+// floor contact from nodal coordinates), or at their surfaces (its outer envelope: a cabinet tips
+// about its outer edge; docs/contact/contact.md, "At the surface"). Flexible items: centre lines.
+enum class PlaneContactAt { centre_lines, surfaces };
+
 struct ContactSpec {
   ContactLawKind law;  // the list's first law, "paper", unless set
   // Unset: the law's default (`stiff`: all), else rigid; read it through implicit_contact(ContactSpec).
@@ -154,6 +159,7 @@ struct ContactSpec {
   // regularised by velocity_regularisation instead (it creeps). Not read by stick_slip (its own spring);
   // used only by items whose contact is implicit.
   double stick_length = 1e-5;
+  PlaneContactAt plane_contact_at = PlaneContactAt::centre_lines;
   ContactOverrides floor, wall, item;
 };
 

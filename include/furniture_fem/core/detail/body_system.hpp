@@ -92,6 +92,8 @@ struct BodySystem {
     static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
     int local;
     Mat3 K;
+    Vec3 arm0 = Vec3::Zero();  // a rigid body's contact off the node: the point's offset (NodalContactTangent)
+    bool at_node() const { return arm0.x() == 0 && arm0.y() == 0 && arm0.z() == 0; }
   };
   std::vector<ContactTerm> contact;
   std::vector<Mat3> contact_factored;

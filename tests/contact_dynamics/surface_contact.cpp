@@ -1,0 +1,93 @@
+// Contact at the members' surfaces (RoomContact::surface, docs/contact/contact.md "At the surface"):
+// a rigid frame of 50 mm tubes touches the floor at its outer envelope, so it tips about its outer
+// bottom edge, at g b/h with b half the envelope's footprint and h the centre of mass's height above
+// the floor, as a solid box does; with contact at the centre lines it tips about the bottom members'
+// axes, 25 mm inside and above (g (b - c) / (h - c)), 5.5 % lower for the medium box below.
+//  1. a suddenly applied constant table acceleration: 1 % below g b/h the block stays, 1 % above it
+//     tips, for two sizes and two friction coefficients (stiff parameters);
+//  2. at rest 10 s under gravity: it rests on its envelope (the bottom surface at the floor to the
+//     penalty's 2.5 um) and stays still;
+//  3. tilted onto one bottom edge and let go: it touches the floor at the edge's outer surface.
+// Measured numbers: docs/contact/verification_contact.md (FFEM_REPORT=1 prints them).
+#include <catch2/catch.hpp>
+
+#include <vector>
+
+#include "dynamics_scenes.hpp"
+
+using namespace ffem_dyn;
+
+namespace {
+
+const Newmark paper_newmark = Newmark::paper();
+
+// A rigid box frame whose floor and wall contact acts at its members' surfaces.
+struct SurfaceBlock {
+  using Sim = Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact<SpringDashpotLaw>>;
+  std::unique_ptr<Model> model = std::make_unique<Model>();
+  Box box;
+  std::unique_ptr<Sim> sim;
+  SurfaceBlock(const BoxSpec& spec, double mu, bool surface) {
+    const int sec = model->add_section(tube()), mat = model->add_material(elastic_steel());
+    box = add_box(*model, "block", sec, mat, spec);
+    RoomContact<SpringDashpotLaw> contact(*model, {same_everywhere(stiff_params(box, mu))}, {floor_plane()});
+    contact.surface = surface;
+    sim = std::make_unique<Sim>(*model, paper_newmark, options_dt(1e-3), std::move(contact));
+    sim->set_rigid(box.body);
+  }
+  // The lowest point of the envelope: the lowest node's centre less the half width, turned.
+  double lowest_surface_z() const {
+    double z = 1e300;
+    for (int n : box.corners) z = std::min(z, sim->positions()[n].z());
+    return z - tube_half_width;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("at the members' surfaces a rigid frame tips at g b/h of its envelope", "[contact_dynamics][rocking][surface]") {
+  const BoxSpec medium_box{0.4, 0.3, 0.8, Vec3::Zero(), 0, 0.05};
+  const BoxSpec tall_box{0.45, 0.4, 1.2, Vec3::Zero(), 0, 0.1};
+  for (const auto& [spec, label] : {std::pair{medium_box, "medium"}, std::pair{tall_box, "tall"}})
+    for (const double mu_factor : {1.5, 3.0})  // mu = factor b/h: it tips before it slides
+      for (const double level : {0.99, 1.01}) {
+        // The frame is symmetric top to bottom: its centre of mass is at mid-height of the envelope.
+        const double b = 0.5 * spec.bx + tube_half_width, h = tube_half_width + 0.5 * spec.h;
+        SurfaceBlock block(spec, mu_factor * b / h, true);
+        REQUIRE(std::abs(block.box.cog.z() - h) < 1e-9);
+        block.sim->run_until(0.3);
+        const double t0 = block.sim->time(), A = level * g0 * b / h;
+        block.sim->set_table_acceleration([=](double t) { return Vec3(t > t0 ? A : 0.0, 0, 0); });
+        double largest = 0, last = 0;
+        block.sim->run_until(t0 + 2.0, [&](const auto& sim, const StepInfo&) {
+          last = std::max(mean_z(sim, block.box.heel), mean_z(sim, block.box.toe)) - tube_half_width;
+          largest = std::max(largest, last);
+        });
+        report("S1 surface contact, %s box (b/h %.4f, mu %.2f b/h), %.2f g b/h: largest edge rise %.3e m, at 2 s %.3e m",
+               label, b / h, mu_factor, level, largest, last);
+        INFO(label << " level " << level << " mu " << mu_factor << " b/h");
+        if (level > 1) {
+          CHECK(largest > 0.05);
+          CHECK(last > spec.bx * b / h / std::sqrt(1 + b * b / (h * h)));  // past the unstable equilibrium
+        } else {
+          CHECK(largest < 0.01);
+          CHECK(last < 1e-3);
+        }
+      }
+}
+
+TEST_CASE("at the members' surfaces a rigid frame rests on its envelope and stays still", "[contact_dynamics][rest][surface]") {
+  for (const BoxSpec spec : {BoxSpec{0.4, 0.3, 0.8, Vec3::Zero(), 0, 0.05}, BoxSpec{0.9, 0.45, 1.8, Vec3::Zero(), 0, 0.1}}) {
+    SurfaceBlock block(spec, 0.5, true);
+    const Vec3 c0 = centre_of_mass(*block.sim, block.box.body);
+    block.sim->run_until(10.0);
+    const Vec3 c1 = centre_of_mass(*block.sim, block.box.body);
+    report("S2 surface contact at rest 10 s, %.2f x %.2f x %.2f m: drift %.3e m, sink %.3e m, lowest surface z %.3e m, speed %.3e m/s",
+           spec.bx, spec.by, spec.h, (c1 - c0).head<2>().norm(), c0.z() - c1.z(), block.lowest_surface_z(),
+           max_speed(*block.sim, block.box.body));
+    CHECK((c1 - c0).head<2>().norm() < 1e-4);
+    // The stiff parameters: 2.5 um under the weight; the surface starts at the floor.
+    CHECK(std::abs(block.lowest_surface_z()) < 1e-5);
+    CHECK(max_speed(*block.sim, block.box.body) < 1e-3);
+  }
+}
