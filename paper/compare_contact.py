@@ -12,9 +12,10 @@ runs them one after the other (niced), and writes paper/results/contact_comparis
 case: rows = bodies, columns = fidelity x law, cells "state, slide m, tilt deg") and
 paper/results/contact_comparison.csv (one row per run and body: every final_state field, the run's
 wall seconds and status). Standard library only. When the JMA-Kobe records the scenes name are
-absent it says so in one line and exits 0. With --plane-contact-at surfaces every variant's rigid items
-touch the floor and walls at their members' surfaces (docs/contact/contact.md, "At the surface"; `full`
-has no rigid item and is an error then); the files are then contact_comparison_surfaces.md and .csv.
+absent it says so in one line and exits 0. With --plane-contact-at surfaces every variant's items touch
+the floor and walls at their members' surfaces (docs/contact/contact.md, "At the surface": a rigid
+item's envelope, a flexible item's cube of corners per node); the files are then
+contact_comparison_surfaces.md and .csv.
 """
 import argparse
 import copy
@@ -191,7 +192,7 @@ def main():
           "Cell: final state, slide (m), final tilt (deg) at 12 s; a run that stopped early (status not",
           "`completed`) shows its status and when it stopped. Last row: wall time of the run (s) and status.",
           "Per-body numbers of every run, stopped ones included: contact_comparison%s.csv." % suffix,
-          "Floor and wall contact of rigid items at their members' %s (`plane_contact_at`)."
+          "Floor and wall contact at the items' members' %s (`plane_contact_at`)."
           % ("centre lines" if not suffix else "surfaces"), ""]
     for c in cases:
         md += ["## Case %s" % CASE_TITLE.get(c, c), ""]

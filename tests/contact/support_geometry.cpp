@@ -69,7 +69,7 @@ TEST_CASE("a box's support geometry is the same to the bit whatever the order of
 
 TEST_CASE("at the members' surfaces, two box frames touch planes at their envelopes' corners", "[contact][support][surface]") {
   // Two rigid frames of 50 x 50 mm tubes (the second turned by 30 deg about z, away from the first):
-  // with RoomContact::surface each one's support points are the 8 corners of its outer envelope,
+  // with RoomContact::set_surface each one's support points are the 8 corners of its outer envelope,
   // 25 mm outside its members' centre lines along its own axes, each point owned by a node of its body.
   Model m;
   const int sec = m.add_section(Section::hollow_rectangle(0.05, 0.05, 0.002, "50 x 50")), mat = m.add_material(Material::steel());
@@ -96,7 +96,7 @@ TEST_CASE("at the members' surfaces, two box frames touch planes at their envelo
         if (!(i & bit)) m.add_member("edge", corner[i], corner[i | bit], sec, mat, o);
   }
   RoomContact<PaperLaw> contact(m, {BodyContact{}, BodyContact{}}, {RigidPlane{}});
-  contact.surface = true;
+  contact.set_surface(m);
   contact.set_rigid(m, 0);
   contact.set_rigid(m, 1);
   const auto& points = contact.surface_points();
@@ -117,4 +117,40 @@ TEST_CASE("at the members' surfaces, two box frames touch planes at their envelo
     for (const Vec3& e : envelopes[k])
       CHECK(std::any_of(points.begin() + 8 * k, points.begin() + 8 * k + 8,
                         [&](const auto& p) { return (m.node(p.node).X + p.arm0 - e).norm() < 1e-12; }));
+}
+
+TEST_CASE("at the members' surfaces, a flexible frame's every node touches planes at its cube's corners",
+          "[contact][support][surface]") {
+  // A flexible frame (turned 30 deg about z) keeps no hull: each node gets the 8 corners of its own
+  // cube, c = 25 mm along the frame's axes (the corners of a corner node are the envelope's there).
+  Model m;
+  const int sec = m.add_section(Section::hollow_rectangle(0.05, 0.05, 0.002, "50 x 50")), mat = m.add_material(Material::steel());
+  const double c = 0.025;
+  const int body = m.add_body("frame");
+  const Mat3 R = Eigen::AngleAxisd(std::acos(-1.0) / 6, Vec3::UnitZ()).toRotationMatrix();
+  const int n0 = m.add_node(Vec3(0, 0, c), body), n1 = m.add_node(Vec3(0, 0, c) + R * Vec3(0.4, 0, 0), body),
+            n2 = m.add_node(Vec3(0, 0, c) + R * Vec3(0.4, 0.3, 0), body);
+  MemberOptions o;
+  o.target_length = 0.1;
+  m.add_member("x", n0, n1, sec, mat, o);
+  m.add_member("y", n1, n2, sec, mat, o);
+  RoomContact<PaperLaw> contact(m, {BodyContact{}}, {RigidPlane{}});
+  contact.set_surface(m);
+  const auto& points = contact.surface_points();
+  REQUIRE(points.size() == 8 * m.body(body).nodes.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto& p = points[i];
+    CHECK(p.node == m.body(body).nodes[i / 8]);
+    // Each offset is +-c along the frame's three axes (x and y turned by 30 deg, z up).
+    const Vec3 local = R.transpose() * p.arm0;
+    INFO("point " << i << " of node " << p.node << ": " << local.transpose());
+    for (int k = 0; k < 3; ++k) CHECK(std::abs(std::abs(local[k]) - c) < 1e-12);
+  }
+  // The corner node n1 (where the members meet): its cube's outer corners are the frame's envelope.
+  const Vec3 outer = m.node(n1).X + R * Vec3(c, -c, -c);
+  CHECK(std::any_of(points.begin(), points.end(), [&](const auto& p) { return (m.node(p.node).X + p.arm0 - outer).norm() < 1e-12; }));
+  // Back to the centre lines: no surface points, every node tested again.
+  contact.set_surface(m, false);
+  CHECK(contact.surface_points().empty());
+  CHECK(contact.plane_nodes().size() == m.body(body).nodes.size());
 }

@@ -15,9 +15,11 @@
 // vertices of its nodes' convex hull only, its support points (a box's eight corners), not its mesh:
 // the vertices of the hull face turned towards a plane each stand for an equal share of the nodes on
 // that face, so a body resting on a face is held as with every node (docs/contact/contact.md).
-// With `surface`, a rigid body's support points are the hull's vertices of cubes of half a member's
-// width around its nodes (its outer envelope: a cabinet tips about its outer edge), each force put at
-// its point with the moment that carries it to the node (docs/contact/contact.md, "At the surface").
+// With set_surface, contact acts at the members' surfaces: a rigid body's support points are the
+// hull's vertices of cubes of half a member's width around its nodes (its outer envelope: a cabinet
+// tips about its outer edge), a flexible body's the corners of such a cube around each node; each
+// force is put at its point with the moment that carries it to the node (docs/contact/contact.md,
+// "At the surface").
 // Each body carries its own parameters (alpha, Dc, mu on the floor along its longer and shorter edge,
 // mu against walls); between two items the paper's mu between furniture applies, with alpha and Dc
 // the mean of the two items' values (the paper leaves this open; docs/contact/contact.md).
@@ -88,9 +90,6 @@ class RoomContact {
   // re-evaluated at the end of a carried-over step). false: every contact force is a load evaluated
   // at the step's predictor, as the paper's code does (docs/contact/implicit_contact.md).
   bool implicit = true;
-  // Rigid bodies touch the floor and walls at their members' surfaces, not their centre lines (set
-  // before set_rigid; flexible bodies keep the centre lines).
-  bool surface = false;
 
   RoomContact() = default;
   RoomContact(const Model& model, std::vector<BodyContact> bodies, std::vector<RigidPlane> planes, Law law = {})
@@ -132,20 +131,24 @@ class RoomContact {
   // (docs/contact/contact.md, "Rigid bodies"). rigid = false: every node again.
   void set_rigid(const Model& model, int body, bool rigid = true) {
     if (support_.empty()) return;  // default-constructed: no bodies, nothing to test
-    const auto& nodes = model.body(body).nodes;
     rigid_.at(body) = rigid;
-    for (int n : nodes) plane_node_[n] = !rigid;
-    if (rigid && surface) {
-      support_.at(body) = detail::SupportGeometry{};
-      rebuild_surface_points(model);
-    } else {
-      support_.at(body) = rigid ? detail::support_geometry(model, nodes) : detail::SupportGeometry{};
-      for (int n : support_[body].vertices) plane_node_[n] = 1;
-      if (!surface_.empty() && !surface_[body].geometry.vertices.empty()) rebuild_surface_points(model);
-    }
+    set_centre_line_geometry(model, body);
+    if (surface_on_) rebuild_surface_points(model);
     select_plane_nodes();
   }
-  // The support points of rigid bodies at their surfaces (all bodies, in body order).
+  // Floor and wall contact at the members' surfaces (true) or their centre lines (false, the paper's),
+  // for every body: a rigid body's support points become the hull of cubes of half a member's width
+  // around its nodes, a flexible body's nodes the corners of such a cube each (docs/contact/contact.md,
+  // "At the surface"). Before the first step (the contacts' history starts again).
+  void set_surface(const Model& model, bool on = true) {
+    surface_on_ = on;
+    if (support_.empty()) return;
+    for (int b = 0; b < static_cast<int>(bodies_.size()); ++b) set_centre_line_geometry(model, b);
+    rebuild_surface_points(model);
+    select_plane_nodes();
+  }
+  bool surface() const { return surface_on_; }
+  // The support points at the members' surfaces (all bodies, in body order).
   const std::vector<detail::SurfacePoint>& surface_points() const { return surface_points_; }
   // The nodes tested against the floor and walls (all but rigid bodies' inner nodes), ascending.
   const std::vector<int>& plane_nodes() const { return plane_nodes_; }
@@ -234,8 +237,9 @@ class RoomContact {
     for (size_t p = 0; p < planes_.size(); ++p) {
       for (int n : model.body(body).nodes)
         if (plane_node_[n]) status.push_back(plane_status_[n * planes_.size() + p]);
-      if (!surface_.empty())
-        for (int sp : surface_[body].points) status.push_back(point_status_[sp * planes_.size() + p]);
+      if (!surface_groups_.empty())
+        for (const auto& group : surface_groups_[body])
+          for (int sp : group.points) status.push_back(point_status_[sp * planes_.size() + p]);
     }
     return status;
   }
@@ -299,6 +303,12 @@ class RoomContact {
   Law& law() { return law_; }
 
  private:
+  struct SurfaceGroup {
+    detail::SupportGeometry geometry;  // a rigid body's envelope, or one node's cube
+    std::vector<int> points;           // indices into surface_points_
+    int node = -1;                     // a flexible body's cube: its node
+  };
+
   // Nodes against planes (floor, walls): forces into f, and (implicit) their tangents; only the
   // implicit bodies' nodes when only_implicit.
   void plane_contacts(const ContactView& view, Eigen::VectorXd& f, bool only_implicit = false) {
@@ -336,31 +346,47 @@ class RoomContact {
     surface_point_contacts(view, f, only_implicit);
   }
 
-  // Rigid bodies' surface points against planes (surface): as plane_contacts, each force at its point.
+  // Surface points against planes (set_surface): as plane_contacts, each force at its point. A flexible
+  // body's node far from a plane (its cube cannot reach it) skips its corners.
   void surface_point_contacts(const ContactView& view, Eigen::VectorXd& f, bool only_implicit) {
-    for (std::size_t sp = 0; sp < surface_points_.size(); ++sp) {
-      const auto& pt = surface_points_[sp];
-      const int n = pt.node, body = view.model.node(n).body;
+    for (std::size_t body = 0; body < surface_groups_.size(); ++body) {
       if (only_implicit && !bodies_[body].implicit) continue;
-      for (size_t p = 0; p < planes_.size(); ++p) {
-        const size_t si = sp * planes_.size() + p;
-        point_trial_[si] = point_state_[si];
-        const PointContact pc = point_plane_force(view, pt, p, point_share_[si], point_trial_[si]);
-        const ContactForce& cf = pc.force;
-        point_status_[si] = status_of(cf);
-        if (!cf.in_contact) continue;
-        const Vec3 moment = pc.arm.cross(cf.on_a);
-        f.template segment<3>(6 * n) += cf.on_a;
-        f.template segment<3>(6 * n + 3) += moment;
-        add_pair_force(body, planes_[p].is_wall ? wall_id : floor_id, cf.on_a);
-        ++active_;
-        if (!implicit || !bodies_[body].implicit) continue;
-        Vec6 w;
-        w << cf.on_a, moment;
-        plane_applied_.emplace_back(n, w);
-        tangents_.push_back({n, cf.K, cf.C, pc.x, pc.v, pt.arm0});
-      }
+      for (const auto& group : surface_groups_[body])
+        for (int sp : group.points)
+          for (size_t p = 0; p < planes_.size(); ++p) surface_point_contact(view, f, group, sp, p);
     }
+  }
+  void surface_point_contact(const ContactView& view, Eigen::VectorXd& f, const SurfaceGroup& group, int sp, size_t p) {
+    const auto& pt = surface_points_[sp];
+    const int n = pt.node, body = view.model.node(n).body;
+    const size_t si = sp * planes_.size() + p;
+    if (beyond_reach(view, group, p)) {
+      point_trial_[si] = ContactState{};
+      point_status_[si] = 0;
+      return;
+    }
+    point_trial_[si] = point_state_[si];
+    const PointContact pc = point_plane_force(view, pt, p, point_share_[si], point_trial_[si]);
+    const ContactForce& cf = pc.force;
+    point_status_[si] = status_of(cf);
+    if (!cf.in_contact) return;
+    const Vec3 moment = pc.arm.cross(cf.on_a);
+    f.template segment<3>(6 * n) += cf.on_a;
+    f.template segment<3>(6 * n + 3) += moment;
+    add_pair_force(body, planes_[p].is_wall ? wall_id : floor_id, cf.on_a);
+    ++active_;
+    if (!implicit || !bodies_[body].implicit) return;
+    Vec6 w;
+    w << cf.on_a, moment;
+    plane_applied_.emplace_back(n, w);
+    tangents_.push_back({n, cf.K, cf.C, pc.x, pc.v, pt.arm0});
+  }
+  // Whether a flexible body's node is so far from plane p that no corner of its cube reaches it (its
+  // half diagonal is sqrt(3) half widths).
+  bool beyond_reach(const ContactView& view, const SurfaceGroup& group, size_t p) const {
+    if (group.node < 0) return false;
+    const RigidPlane& pl = planes_[p];
+    return (view.x[group.node] - pl.point).dot(pl.normal) > 1.75 * half_width_[group.node];
   }
 
   // A surface point against a plane: its position and velocity now (its offset turned with its node),
@@ -443,14 +469,16 @@ class RoomContact {
           for (int n : face->vertices) share_[n * np + p] = face->share;
       }
     }
-    for (const auto& bsur : surface_) {
-      if (bsur.geometry.faces.empty()) continue;
-      for (size_t p = 0; p < np; ++p) {
-        for (int sp : bsur.points) point_share_[sp * np + p] = 1.0;
-        if (const auto* face = bsur.geometry.face_towards([&](int sp) { return point_now(view, sp); }, planes_[p].normal))
-          for (int sp : face->vertices) point_share_[sp * np + p] = face->share;
+    for (const auto& groups : surface_groups_)
+      for (const auto& group : groups) {
+        if (group.geometry.faces.empty()) continue;
+        for (size_t p = 0; p < np; ++p) {
+          if (beyond_reach(view, group, p)) continue;
+          for (int sp : group.points) point_share_[sp * np + p] = 1.0;
+          if (const auto* face = group.geometry.face_towards([&](int sp) { return point_now(view, sp); }, planes_[p].normal))
+            for (int sp : face->vertices) point_share_[sp * np + p] = face->share;
+        }
       }
-    }
   }
   // A surface point's position now.
   Vec3 point_now(const ContactView& view, int sp) const {
@@ -464,23 +492,44 @@ class RoomContact {
     return w;
   }
 
-  // Every rigid body's surface geometry again (set_rigid; before the first step, so no history is lost).
+  // A body's contact at the centre lines: a rigid body's hull vertices, a flexible body's every node;
+  // none with set_surface (its surface points instead).
+  void set_centre_line_geometry(const Model& model, int body) {
+    const auto& nodes = model.body(body).nodes;
+    const bool rigid = rigid_[body];
+    support_.at(body) = rigid && !surface_on_ ? detail::support_geometry(model, nodes) : detail::SupportGeometry{};
+    for (int n : nodes) plane_node_[n] = !rigid && !surface_on_;
+    for (int n : support_[body].vertices) plane_node_[n] = 1;
+  }
+
+  // Every body's surface geometry again (set_rigid, set_surface; before the first step, so no history
+  // is lost): a rigid body's one hull, a flexible body's cube per node.
   void rebuild_surface_points(const Model& model) {
     surface_points_.clear();
-    surface_.assign(bodies_.size(), BodySurface{});
-    for (std::size_t b = 0; b < bodies_.size(); ++b) {
-      if (!rigid_[b] || !surface) continue;
-      const std::size_t first = surface_points_.size();
-      // The geometry names the points by their place in the whole list.
-      surface_[b].geometry = detail::surface_support_geometry(model, model.body(static_cast<int>(b)).nodes, half_width_,
-                                                               surface_points_);
-      for (std::size_t i = first; i < surface_points_.size(); ++i) surface_[b].points.push_back(static_cast<int>(i));
+    surface_groups_.assign(bodies_.size(), {});
+    if (surface_on_) {
+      const std::vector<Mat3> axes = detail::cube_axes(model);
+      for (std::size_t b = 0; b < bodies_.size(); ++b) {
+        const auto& nodes = model.body(static_cast<int>(b)).nodes;
+        if (rigid_[b]) surface_groups_[b].push_back(surface_group(model, nodes, axes, -1));
+        else
+          for (int n : nodes) surface_groups_[b].push_back(surface_group(model, {n}, axes, n));
+      }
     }
     const std::size_t m = surface_points_.size() * planes_.size();
     point_state_.assign(m, ContactState{});
     point_trial_ = point_state_;
     point_status_.assign(m, 0);
     point_share_.assign(m, 1.0);
+  }
+  SurfaceGroup surface_group(const Model& model, const std::vector<int>& nodes, const std::vector<Mat3>& axes, int node) {
+    SurfaceGroup group;
+    group.node = node;
+    const std::size_t first = surface_points_.size();
+    // The geometry names the points by their place in the whole list.
+    group.geometry = detail::surface_support_geometry(model, nodes, half_width_, axes, surface_points_);
+    for (std::size_t i = first; i < surface_points_.size(); ++i) group.points.push_back(static_cast<int>(i));
+    return group;
   }
 
   // The parameters of a contact standing for `share` nodes: every force and tangent `share` times one node's.
@@ -530,15 +579,22 @@ class RoomContact {
         ContactState st = node_state_[n * planes_.size() + p];
         if (f(n, p, node_plane_force(view, n, p, share_on(face, n), st))) return true;
       }
-      if (surface_.empty() || surface_[body].points.empty()) continue;
-      const auto& geometry = surface_[body].geometry;
-      const detail::SupportFace* point_face =
-          geometry.faces.empty() ? nullptr
-                                 : geometry.face_towards([&](int sp) { return point_now(view, sp); }, planes_[p].normal);
-      for (int sp : surface_[body].points) {
-        ContactState st = point_state_[sp * planes_.size() + p];
-        if (g(surface_points_[sp], p, point_plane_force(view, surface_points_[sp], p, share_on(point_face, sp), st)))
-          return true;
+      if (surface_groups_.empty()) continue;
+      for (const auto& group : surface_groups_[body]) {
+        if (beyond_reach(view, group, p)) {
+          for (int sp : group.points)
+            if (g(surface_points_[sp], p, PointContact{})) return true;
+          continue;
+        }
+        const detail::SupportFace* point_face =
+            group.geometry.faces.empty()
+                ? nullptr
+                : group.geometry.face_towards([&](int sp) { return point_now(view, sp); }, planes_[p].normal);
+        for (int sp : group.points) {
+          ContactState st = point_state_[sp * planes_.size() + p];
+          if (g(surface_points_[sp], p, point_plane_force(view, surface_points_[sp], p, share_on(point_face, sp), st)))
+            return true;
+        }
       }
     }
     return false;
@@ -683,13 +739,11 @@ class RoomContact {
   std::vector<ImplicitPair> implicit_pairs_;  // the pairs behind pair_tangents_
   std::vector<char> rigid_;                   // per body: set_rigid
   std::vector<std::pair<int, Vec6>> plane_applied_;  // the floor and wall forces (and moments) of the last evaluation
-  // Rigid bodies at their surfaces: per body its geometry over surface_points_ and its points' range;
-  // per point and plane, as node_state_ ... for nodes.
-  struct BodySurface {
-    detail::SupportGeometry geometry;
-    std::vector<int> points;  // indices into surface_points_
-  };
-  std::vector<BodySurface> surface_;  // per body; empty geometry unless rigid with `surface`
+  // Contact at the members' surfaces (set_surface): per body its groups of points (a rigid body's hull,
+  // or a flexible body's cube per node), each with its geometry over surface_points_; per point and
+  // plane, as node_state_ ... for nodes.
+  bool surface_on_ = false;
+  std::vector<std::vector<SurfaceGroup>> surface_groups_;  // per body
   std::vector<detail::SurfacePoint> surface_points_;
   std::vector<ContactState> point_state_, point_trial_;
   std::vector<char> point_status_;

@@ -28,6 +28,7 @@ namespace furniture_fem {
 using Vec12 = Eigen::Matrix<double, 12, 1>;
 using Mat12 = Eigen::Matrix<double, 12, 12>;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
 
 // Sectional forces (N, Qy, Qz, Mx, My, Mz) at a point of an element.
 struct SectionForces {

@@ -768,7 +768,7 @@ class Simulation {
         for (std::size_t i = 0; i < nnz; ++i) ar(bs.K.valuePtr()[i]);
       }
       ar(bs.Q_factor, bs.steps_since_refresh, bs.needs_refresh, bs.assembled, bs.rigid, bs.rigid_c0, bs.rigid_dc,
-         bs.rigid_Q, bs.contact, bs.contact_factored, bs.factored_nodes, bs.contact_columns, bs.contact_column,
+         bs.rigid_Q, bs.contact, bs.contact_factored, bs.factored_nodes, bs.contact_columns, bs.contact_column, bs.contact_column_dim,
          bs.contact_columns_used, bs.r, bs.dx, bs.work);
     }
     long factorizations = s.factorizations();
@@ -1359,7 +1359,7 @@ class Simulation {
       if (reuse) Q = sim.body_rotation(bs);
       // The contact terms that changed since the factorisation: put on the solution by the Woodbury
       // identity after the solve or, more than max_contact_updates of them, factorised now.
-      std::vector<std::pair<int, Mat3>> changes;
+      std::vector<ContactChange> changes;
       if (!bs.needs_refresh && !sim.static_) {
         changes = contact_changes(sim, b, Q * bs.Q_factor.transpose());
         if (static_cast<int>(changes.size()) > max_contact_updates) bs.needs_refresh = true;
@@ -1382,6 +1382,7 @@ class Simulation {
         bs.assembled = false;
         bs.steps_since_refresh = 0;
         bs.contact_column.assign(bs.nodes.size(), -1);  // the columns belong to the old factor
+        bs.contact_column_dim.assign(bs.nodes.size(), 0);
         bs.contact_columns_used = 0;
         ++s.refreshed;
       }
@@ -1407,85 +1408,149 @@ class Simulation {
     // changes (a contact opens, closes, sticks or slips): the changes that matter, at most
     // max_contact_updates nodes, are put on the solution by the Woodbury identity,
     // (K + U D U^T) x = r => x = dx - Z y, (I + D U^T Z) y = D U^T dx, Z = K^-1 U, U selecting those
-    // nodes' translations (in the factor's frame: terms rotated by P); Z's columns are kept until the
-    // next factorisation. A change smaller than contact_change_tolerance of the term is left to the
-    // carried-over unbalance (a modified Newton step). More changes than the cap are factorised in the
-    // same step: left out, even for a few steps, a stiff contact on light nodes (the `stiff` law on a
-    // desk's panel edges: omega dt = 20) diverges within them (docs/contact/implicit_contact.md).
+    // nodes' translations, or all six DOF for a node with a contact off it (in the factor's frame:
+    // terms rotated by P); Z's columns are kept until the next factorisation. A change smaller than
+    // contact_change_tolerance of the term is left to the carried-over unbalance (a modified Newton
+    // step). More changes than the cap are factorised in the same step: left out, even for a few steps,
+    // a stiff contact on light nodes (the `stiff` law on a desk's panel edges: omega dt = 20) diverges
+    // within them (docs/contact/implicit_contact.md).
     // Measured on configuration 3 under the `stiff` law, 2 s: caps of 6 to 64 cost the same
     // (17-19 s CPU); 16 factorised 197 times against the 120 of the regular refreshes.
     static constexpr int max_contact_updates = 16;
     static constexpr double contact_change_tolerance = 0.3;
 
+    struct ContactChange {
+      int local;
+      Mat6 d;   // the change of the node's term
+      int dim;  // 3: on its translations only; 6: with its rotations
+    };
+
+    // A contact term on its node's six DOF. At the node: K on the translations. At a point off it (a
+    // member's surface, arm = R_n arm0): the point moves by du - S dtheta (S = [arm]x) and its force
+    // puts the moment S f on the node, so T^T K T with T = [I, -S].
+    static Mat6 node_term(const Simulation& sim, const detail::BodySystem& bs, const detail::BodySystem::ContactTerm& c) {
+      Mat6 k = Mat6::Zero();
+      k.topLeftCorner<3, 3>() = c.K;
+      if (c.at_node()) return k;
+      const Mat3 S = detail::skew(sim.R_[bs.nodes[c.local]] * c.arm0);
+      k.block<3, 3>(0, 3) = -c.K * S;
+      k.block<3, 3>(3, 0) = S * c.K;
+      k.block<3, 3>(3, 3) = -S * c.K * S;
+      return k;
+    }
+    static bool translational(const Mat6& k) {
+      return k.rightCols<3>().isZero(0) && k.bottomLeftCorner<3, 3>().isZero(0);
+    }
+    // The Frobenius norm (a term on the translations: of its 3 x 3, as the factorisation sees it).
+    static double term_norm(const Mat6& k) { return translational(k) ? Mat3(k.topLeftCorner<3, 3>()).norm() : k.norm(); }
+    // A term in the factor's frame: each 3 x 3 block P^T B P.
+    static Mat6 rotated(const Mat3& P, const Mat6& k) {
+      Mat6 r;
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) r.block<3, 3>(3 * i, 3 * j) = P.transpose() * Mat3(k.block<3, 3>(3 * i, 3 * j)) * P;
+      return r;
+    }
+
+    // Each contact node's terms summed (a node with several surface points has several), in the order
+    // the nodes first appear in bs.contact; transform(k) is applied to each term first.
+    template <class Transform>
+    static std::vector<int> sum_node_terms(const Simulation& sim, detail::BodySystem& bs, Transform&& transform) {
+      std::vector<int> order;
+      bs.contact_seen.assign(bs.nodes.size(), 0);
+      bs.contact_now.resize(bs.nodes.size());
+      for (const auto& c : bs.contact) {
+        const Mat6 k = transform(node_term(sim, bs, c));
+        if (bs.contact_seen[c.local]) {
+          bs.contact_now[c.local] += k;
+        } else {
+          bs.contact_seen[c.local] = 1;
+          bs.contact_now[c.local] = k;
+          order.push_back(c.local);
+        }
+      }
+      return order;
+    }
+
     static void factor_contact_terms(Simulation& sim, detail::BodySystem& bs) {
-      bs.contact_factored.assign(bs.nodes.size(), Mat3::Zero());
+      bs.contact_factored.assign(bs.nodes.size(), Mat6::Zero());
       bs.factored_nodes.clear();
       if (sim.static_) return;
       double* Kv = bs.K.valuePtr();
-      for (const auto& c : bs.contact) {
-        const Mat3 k = masked(bs, c.local, c.K);
-        for (int i = 0; i < 9; ++i) Kv[bs.node_slots[c.local][i]] += k(i / 3, i % 3);
-        bs.contact_factored[c.local] = k;
-        bs.factored_nodes.push_back(c.local);
+      bs.factored_nodes = sum_node_terms(sim, bs, [](const Mat6& k) { return k; });
+      for (int local : bs.factored_nodes) {
+        const Mat6 k = masked(bs, local, bs.contact_now[local]);
+        const int n = translational(k) ? 3 : 6;
+        for (int i = 0; i < n; ++i)
+          for (int j = 0; j < n; ++j) Kv[bs.node_slots[local][6 * i + j]] += k(i, j);
+        bs.contact_factored[local] = k;
       }
     }
-    static Mat3 masked(const detail::BodySystem& bs, int local, Mat3 k) {
-      for (int i = 0; i < 3; ++i)
+    static Mat6 masked(const detail::BodySystem& bs, int local, Mat6 k) {
+      for (int i = 0; i < 6; ++i)
         if (bs.fixed[6 * local + i]) k.row(i).setZero(), k.col(i).setZero();
       return k;
     }
 
     // The nodes whose contact term moved by more than contact_change_tolerance since the
     // factorisation, with the change (in the factor's frame: terms rotated by P).
-    static std::vector<std::pair<int, Mat3>> contact_changes(Simulation& sim, int b, const Mat3& P) {
+    static std::vector<ContactChange> contact_changes(Simulation& sim, int b, const Mat3& P) {
       auto& bs = sim.systems_[b];
-      if (bs.contact_factored.size() != bs.nodes.size()) bs.contact_factored.assign(bs.nodes.size(), Mat3::Zero());
-      std::vector<std::pair<int, Mat3>> changes;
-      const auto consider = [&](int local, const Mat3& now) {
-        const Mat3 d = now - bs.contact_factored[local];
-        if (d.norm() > contact_change_tolerance * std::max(now.norm(), bs.contact_factored[local].norm()))
-          changes.emplace_back(local, d);
+      if (bs.contact_factored.size() != bs.nodes.size()) bs.contact_factored.assign(bs.nodes.size(), Mat6::Zero());
+      std::vector<ContactChange> changes;
+      const auto consider = [&](int local, const Mat6& now) {
+        const Mat6 d = now - bs.contact_factored[local];
+        if (term_norm(d) > contact_change_tolerance * std::max(term_norm(now), term_norm(bs.contact_factored[local])))
+          changes.push_back({local, d, translational(d) ? 3 : 6});
       };
-      std::vector<char>& seen = bs.contact_seen;
-      seen.assign(bs.nodes.size(), 0);
-      for (const auto& c : bs.contact) {
-        consider(c.local, masked(bs, c.local, P.transpose() * c.K * P));
-        seen[c.local] = 1;
-      }
+      for (int local : sum_node_terms(sim, bs, [&](const Mat6& k) { return rotated(P, k); }))
+        consider(local, masked(bs, local, bs.contact_now[local]));
       for (int local : bs.factored_nodes)
-        if (!seen[local]) consider(local, Mat3::Zero());
+        if (!bs.contact_seen[local]) consider(local, Mat6::Zero());
       return changes;
     }
     // Puts the changes on the solution bs.dx by the Woodbury identity. False when a solve fails.
-    static bool apply_contact_changes(Simulation& sim, int b, const std::vector<std::pair<int, Mat3>>& changes) {
+    static bool apply_contact_changes(Simulation& sim, int b, const std::vector<ContactChange>& changes) {
       auto& bs = sim.systems_[b];
       if (changes.empty()) return true;
-      for (const auto& [local, d] : changes)
-        if (bs.contact_column[local] < 0 && !add_contact_columns(sim, b, local)) return false;
-      const int m = 3 * static_cast<int>(changes.size());
+      for (const auto& ch : changes)
+        if (bs.contact_column_dim[ch.local] < ch.dim && !add_contact_columns(sim, b, ch.local, ch.dim)) return false;
+      std::vector<int> at(changes.size());
+      int m = 0;
+      for (std::size_t a = 0; a < changes.size(); ++a) at[a] = m, m += changes[a].dim;
       Eigen::MatrixXd S(m, m), D = Eigen::MatrixXd::Zero(m, m);
       Eigen::VectorXd rhs(m);
-      for (int a = 0; a < m / 3; ++a) {
-        const int la = changes[a].first;
-        D.template block<3, 3>(3 * a, 3 * a) = changes[a].second;
-        for (int c = 0; c < m / 3; ++c)
-          S.template block<3, 3>(3 * a, 3 * c) = bs.contact_columns.block(6 * la, bs.contact_column[changes[c].first], 3, 3);
-        rhs.template segment<3>(3 * a) = changes[a].second * bs.dx.template segment<3>(6 * la);
+      for (std::size_t a = 0; a < changes.size(); ++a) {
+        const auto& ca = changes[a];
+        if (ca.dim == 3) {
+          const Mat3 d = ca.d.template topLeftCorner<3, 3>();
+          D.template block<3, 3>(at[a], at[a]) = d;
+          rhs.template segment<3>(at[a]) = d * bs.dx.template segment<3>(6 * ca.local);
+        } else {
+          D.template block<6, 6>(at[a], at[a]) = ca.d;
+          rhs.template segment<6>(at[a]) = ca.d * bs.dx.template segment<6>(6 * ca.local);
+        }
+        for (std::size_t c = 0; c < changes.size(); ++c)
+          S.block(at[a], at[c], ca.dim, changes[c].dim) =
+              bs.contact_columns.block(6 * ca.local, bs.contact_column[changes[c].local], ca.dim, changes[c].dim);
       }
       const Eigen::VectorXd y = (Eigen::MatrixXd::Identity(m, m) + D * S).partialPivLu().solve(rhs);
       if (!y.allFinite()) return false;
-      for (int c = 0; c < m / 3; ++c)
-        bs.dx -= bs.contact_columns.middleCols(bs.contact_column[changes[c].first], 3) * y.template segment<3>(3 * c);
+      for (std::size_t c = 0; c < changes.size(); ++c) {
+        const int col = bs.contact_column[changes[c].local];
+        if (changes[c].dim == 3) bs.dx -= bs.contact_columns.middleCols(col, 3) * y.template segment<3>(at[c]);
+        else bs.dx -= bs.contact_columns.middleCols(col, 6) * y.template segment<6>(at[c]);
+      }
       return true;
     }
-    // K^-1 e for the three translations of one local node (zero for a fixed DOF).
-    static bool add_contact_columns(Simulation& sim, int b, int local) {
+    // K^-1 e for the first dim DOF of one local node (its translations, then its rotations; zero for a
+    // fixed DOF).
+    static bool add_contact_columns(Simulation& sim, int b, int local, int dim) {
       auto& bs = sim.systems_[b];
       const int n = bs.ndof(), first = bs.contact_columns_used;
-      if (bs.contact_columns.rows() != n || bs.contact_columns.cols() < first + 3)
-        bs.contact_columns.conservativeResize(n, std::max<Eigen::Index>(first + 3, 2 * bs.contact_columns.cols()));
+      if (bs.contact_columns.rows() != n || bs.contact_columns.cols() < first + dim)
+        bs.contact_columns.conservativeResize(n, std::max<Eigen::Index>(first + dim, 2 * bs.contact_columns.cols()));
       Eigen::VectorXd e = Eigen::VectorXd::Zero(n), z(n);
-      for (int i = 0; i < 3; ++i) {
+      for (int i = 0; i < dim; ++i) {
         const int dof = 6 * local + i;
         if (bs.fixed[dof]) {
           bs.contact_columns.col(first + i).setZero();
@@ -1497,7 +1562,8 @@ class Simulation {
         bs.contact_columns.col(first + i) = z;
       }
       bs.contact_column[local] = first;
-      bs.contact_columns_used += 3;
+      bs.contact_column_dim[local] = dim;
+      bs.contact_columns_used += dim;
       return true;
     }
 

@@ -305,11 +305,6 @@ inline void validate(const SceneSpec& s) {
       fail(path + ".element", "member \"" + f.member + "\" has " + std::to_string(scratch.member(member).element_count) +
                                   " elements (got index " + std::to_string(f.element) + ")");
   }
-  // Contact at the surfaces acts on rigid items only: a scene with none would not change.
-  if (s.contact.plane_contact_at == PlaneContactAt::surfaces &&
-      std::none_of(bodies.begin(), bodies.end(), [&](const auto& b) { return item_is_rigid(s, b.second); }))
-    fail("contact.plane_contact_at", "\"surfaces\" acts on rigid items (fidelity \"rigid\", or \"auto\" without "
-                                     "sectional forces) and no item is rigid; their contact stays at the centre lines");
 }
 
 }  // namespace furniture_fem

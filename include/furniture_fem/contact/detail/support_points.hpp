@@ -246,16 +246,11 @@ struct SurfacePoint {
   Vec3 arm0 = Vec3::Zero();
 };
 
-// The same at the members' surfaces: the hull of the corners of a cube around each node, of half side
-// half_width[n] (half the width of its narrowest member). The cube's axes follow the node's members:
-// the first member's axis and the first one across it (a frame's corner: the item's axes, at any yaw);
-// a node inside a straight member those of a node along it with a member across; a body of one
-// straight line, its section's axes. The hull of a cabinet of 50 mm tubes
-// is its outer envelope, so it tips about its outer edges, not 25 mm inside and above them.
-// Returns the geometry over the indices of `points` (appended to it; ids count on from its size).
-inline SupportGeometry surface_support_geometry(const Model& model, const std::vector<int>& nodes,
-                                                const std::vector<double>& half_width,
-                                                std::vector<SurfacePoint>& points) {
+// The axes of the cube around each node (surface contact): the first member's axis and the first one
+// across it (a frame's corner: the item's axes, at any yaw); a node inside a straight member those of a
+// node along it with a member across; a node of one straight line, its section's axes; a node of no
+// member, the table's. One matrix per node of the model, its columns the axes.
+inline std::vector<Mat3> cube_axes(const Model& model) {
   std::vector<Mat3> axes(static_cast<std::size_t>(model.num_nodes()), Mat3::Zero());
   std::vector<char> crossed(axes.size(), 0);
   for (const auto& el : model.elements()) {
@@ -285,15 +280,28 @@ inline SupportGeometry surface_support_geometry(const Model& model, const std::v
         changed = true;
       }
   }
+  for (auto& E : axes)
+    if (E.isZero(0)) E = Mat3::Identity();
+  return axes;
+}
+
+// The hull of the corners of a cube around each of `nodes`, of half side half_width[n] (half the width
+// of its narrowest member) and axes axes[n] (cube_axes): contact at the members' surfaces. For a rigid
+// body's nodes, its outer envelope (a cabinet of 50 mm tubes tips about its outer edges, not 25 mm
+// inside and above them); for one node, its cube (a flexible body's node: six faces of four corners,
+// each corner a quarter of the node). Only the hull's vertices are appended to `points`; the geometry
+// names them by their index there.
+inline SupportGeometry surface_support_geometry(const Model& model, const std::vector<int>& nodes,
+                                                const std::vector<double>& half_width, const std::vector<Mat3>& axes,
+                                                std::vector<SurfacePoint>& points) {
   const std::size_t first = points.size();
   support::Points P(first);
   std::vector<int> owner(first, -1), ids;
   for (int n : nodes) {
-    const Mat3 E = axes[n].isZero(0) ? Mat3::Identity() : axes[n];
     const double c = std::isfinite(half_width[n]) ? half_width[n] : 0.0;
     for (int corner = 0; corner < 8; ++corner) {
       const Vec3 s((corner & 1) ? 1.0 : -1.0, (corner & 2) ? 1.0 : -1.0, (corner & 4) ? 1.0 : -1.0);
-      const Vec3 arm = c * (E * s);
+      const Vec3 arm = c * (axes[n] * s);
       ids.push_back(static_cast<int>(P.size()));
       P.push_back(model.node(n).X + arm);
       owner.push_back(n);

@@ -71,7 +71,7 @@ struct BodySystem {
   SparseMatrix K;
   std::vector<std::array<int, 144>> element_slots;
   std::vector<int> diag_slot;        // value index of each diagonal entry
-  std::vector<std::array<int, 9>> node_slots;  // value indices of each node's translational 3 x 3 block
+  std::vector<std::array<int, 36>> node_slots;  // value indices of each node's 6 x 6 diagonal block (row-major)
   std::vector<char> fixed;           // per local DOF
   Eigen::VectorXd r, dx, work;       // residual, solution, scratch
   Vec3 Xc = Vec3::Zero();            // initial centroid
@@ -83,24 +83,27 @@ struct BodySystem {
   Vec3 rigid_c0 = Vec3::Zero(), rigid_dc = Vec3::Zero();  // centre at the step's start, its increment
   Mat3 rigid_Q = Mat3::Identity();   // rotation since the step's start
   bool rigid_at_start = false;       // its nodes not moved since the step's start (centre rigid_c0)
-  // Contact inside the implicit step: the effective-matrix terms of the body's contact nodes (local
-  // node, 3 x 3 on its translations); the terms put into the factorisation (per local node, in the
-  // factor's frame; the nodes that have one); and the columns K^-1 e of the factorised matrix for the
-  // nodes whose term has changed since, kept until the next factorisation (a node's three columns start
-  // at contact_column[local]).
+  // Contact inside the implicit step: the effective-matrix terms of the body's contacts (local node,
+  // 3 x 3 on the contact point's translation; a point off the node, at a member's surface, carries its
+  // offset and acts on the node's six DOF); the terms put into the factorisation (per local node, 6 x 6,
+  // in the factor's frame; the nodes that have one); and the columns K^-1 e of the factorised matrix for
+  // the nodes whose term has changed since, kept until the next factorisation (contact_column_dim[local]
+  // columns, its translations and then its rotations, start at contact_column[local]).
   struct ContactTerm {
     static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
     int local;
     Mat3 K;
-    Vec3 arm0 = Vec3::Zero();  // a rigid body's contact off the node: the point's offset (NodalContactTangent)
+    Vec3 arm0 = Vec3::Zero();  // a contact off the node: the point's offset (NodalContactTangent)
     bool at_node() const { return arm0.x() == 0 && arm0.y() == 0 && arm0.z() == 0; }
   };
   std::vector<ContactTerm> contact;
-  std::vector<Mat3> contact_factored;
+  std::vector<Mat6> contact_factored;
   std::vector<int> factored_nodes;
   std::vector<char> contact_seen;  // scratch, per local node
+  std::vector<Mat6> contact_now;   // scratch, per local node
   Eigen::MatrixXd contact_columns;
-  std::vector<int> contact_column;  // per local node; -1: not computed
+  std::vector<int> contact_column;      // per local node; -1: not computed
+  std::vector<int> contact_column_dim;  // per local node: 3 (translations) or 6 columns computed
   int contact_columns_used = 0;
   int ndof() const { return static_cast<int>(nodes.size()) * 6; }
 };
@@ -131,7 +134,7 @@ inline void build_pattern(BodySystem& bs, const Model& model, const std::vector<
   for (int i = 0; i < n; ++i) bs.diag_slot[i] = slot(i, i);
   bs.node_slots.resize(bs.nodes.size());
   for (size_t k = 0; k < bs.nodes.size(); ++k)
-    for (int i = 0; i < 9; ++i) bs.node_slots[k][i] = slot(6 * int(k) + i / 3, 6 * int(k) + i % 3);
+    for (int i = 0; i < 36; ++i) bs.node_slots[k][i] = slot(6 * int(k) + i / 6, 6 * int(k) + i % 6);
   bs.element_slots.resize(bs.elements.size());
   for (size_t k = 0; k < bs.elements.size(); ++k) {
     const auto& el = model.elements()[bs.elements[k]];
