@@ -278,7 +278,7 @@ class RoomContact {
     // No copy back into node_trial_: add_forces overwrites every entry of it (reset out of contact,
     // the committed state in contact) before the law reads it.
     node_state_.swap(node_trial_);
-    point_state_.swap(point_trial_);
+    commit_point_states();
     pair_state_.swap(pair_trial_);  // pairs out of contact forget their history
     pair_trial_.clear();
   }
@@ -291,7 +291,7 @@ class RoomContact {
   friend void transfer_state(Self& c, Archive& ar) {
     ar(c.node_state_, c.node_trial_, c.pair_state_, c.pair_trial_, c.candidates_, c.x_broad_);
     ar(c.pair_forces_, c.tangents_, c.pair_tangents_, c.implicit_pairs_, c.plane_applied_, c.plane_status_, c.share_);
-    ar(c.point_state_, c.point_trial_, c.point_status_, c.point_share_);
+    ar(c.point_state_, c.point_trial_, c.point_status_, c.point_share_, c.group_near_, c.group_state_live_);
     ar(c.steps_, c.broad_runs_, c.active_);
   }
 
@@ -307,6 +307,8 @@ class RoomContact {
     detail::SupportGeometry geometry;  // a rigid body's envelope, or one node's cube
     std::vector<int> points;           // indices into surface_points_
     int node = -1;                     // a flexible body's cube: its node
+    int id = 0;                        // its place among every body's groups
+    std::vector<Vec3> rest_normals;    // a node's cube: its faces' unit outward normals at rest
   };
 
   // Nodes against planes (floor, walls): forces into f, and (implicit) their tangents; only the
@@ -349,22 +351,29 @@ class RoomContact {
   // Surface points against planes (set_surface): as plane_contacts, each force at its point. A flexible
   // body's node far from a plane (its cube cannot reach it) skips its corners.
   void surface_point_contacts(const ContactView& view, Eigen::VectorXd& f, bool only_implicit) {
+    const size_t np = planes_.size();
     for (std::size_t body = 0; body < surface_groups_.size(); ++body) {
       if (only_implicit && !bodies_[body].implicit) continue;
-      for (const auto& group : surface_groups_[body])
+      for (const auto& group : surface_groups_[body]) {
+        char* near = &group_near_[group.id * np];
+        for (size_t p = 0; p < np; ++p) {
+          const bool now = !beyond_reach(view, group, p);
+          // Out of reach now: its points' statuses go to 0 (once); their trial states are not read
+          // (commit_point_states empties their committed states instead).
+          if (!now && near[p])
+            for (int sp : group.points) point_status_[sp * np + p] = 0;
+          near[p] = now;
+        }
         for (int sp : group.points)
-          for (size_t p = 0; p < planes_.size(); ++p) surface_point_contact(view, f, group, sp, p);
+          for (size_t p = 0; p < np; ++p)
+            if (near[p]) surface_point_contact(view, f, sp, p);
+      }
     }
   }
-  void surface_point_contact(const ContactView& view, Eigen::VectorXd& f, const SurfaceGroup& group, int sp, size_t p) {
+  void surface_point_contact(const ContactView& view, Eigen::VectorXd& f, int sp, size_t p) {
     const auto& pt = surface_points_[sp];
     const int n = pt.node, body = view.model.node(n).body;
     const size_t si = sp * planes_.size() + p;
-    if (beyond_reach(view, group, p)) {
-      point_trial_[si] = ContactState{};
-      point_status_[si] = 0;
-      return;
-    }
     point_trial_[si] = point_state_[si];
     const PointContact pc = point_plane_force(view, pt, p, point_share_[si], point_trial_[si]);
     const ContactForce& cf = pc.force;
@@ -387,6 +396,24 @@ class RoomContact {
     if (group.node < 0) return false;
     const RigidPlane& pl = planes_[p];
     return (view.x[group.node] - pl.point).dot(pl.normal) > 1.75 * half_width_[group.node];
+  }
+  // The surface points' committed states: a group's last evaluated trials where it was within reach of
+  // the plane, no history where not. Only states that may hold a history are written: most nodes of a
+  // flexible body are far from every plane, and their states stay empty.
+  void commit_point_states() {
+    const size_t np = planes_.size();
+    for (const auto& groups : surface_groups_)
+      for (const auto& group : groups)
+        for (size_t p = 0; p < np; ++p) {
+          const size_t gp = group.id * np + p;
+          if (group_near_[gp]) {
+            for (int sp : group.points) point_state_[sp * np + p] = point_trial_[sp * np + p];
+            group_state_live_[gp] = 1;
+          } else if (group_state_live_[gp]) {
+            for (int sp : group.points) point_state_[sp * np + p] = ContactState{};
+            group_state_live_[gp] = 0;
+          }
+        }
   }
 
   // A surface point against a plane: its position and velocity now (its offset turned with its node),
@@ -475,10 +502,24 @@ class RoomContact {
         for (size_t p = 0; p < np; ++p) {
           if (beyond_reach(view, group, p)) continue;
           for (int sp : group.points) point_share_[sp * np + p] = 1.0;
-          if (const auto* face = group.geometry.face_towards([&](int sp) { return point_now(view, sp); }, planes_[p].normal))
+          if (const auto* face = face_towards(view, group, planes_[p].normal))
             for (int sp : face->vertices) point_share_[sp * np + p] = face->share;
         }
       }
+  }
+  // The group's face that looks most directly into a plane of unit normal n. A node's cube turns with
+  // its node, so its faces' normals are their rest normals turned: compare those with n turned back
+  // (one product instead of three corner positions per face).
+  const detail::SupportFace* face_towards(const ContactView& view, const SurfaceGroup& group, const Vec3& n) const {
+    if (group.node < 0) return group.geometry.face_towards([&](int sp) { return point_now(view, sp); }, n);
+    const Vec3 m = (*view.rotations)[group.node].transpose() * n;
+    const detail::SupportFace* best = nullptr;
+    double best_cos = -2;
+    for (std::size_t i = 0; i < group.geometry.faces.size(); ++i) {
+      const double c = -group.rest_normals[i].dot(m);
+      if (c > best_cos) best_cos = c, best = &group.geometry.faces[i];
+    }
+    return best;
   }
   // A surface point's position now.
   Vec3 point_now(const ContactView& view, int sp) const {
@@ -507,6 +548,7 @@ class RoomContact {
   void rebuild_surface_points(const Model& model) {
     surface_points_.clear();
     surface_groups_.assign(bodies_.size(), {});
+    group_count_ = 0;
     if (surface_on_) {
       const std::vector<Mat3> axes = detail::cube_axes(model);
       for (std::size_t b = 0; b < bodies_.size(); ++b) {
@@ -521,14 +563,24 @@ class RoomContact {
     point_trial_ = point_state_;
     point_status_.assign(m, 0);
     point_share_.assign(m, 1.0);
+    // Per group and plane: within reach at its last evaluation; whether its points' committed states
+    // may hold a history (commit_point_states).
+    group_near_.assign(group_count_ * planes_.size(), 0);
+    group_state_live_ = group_near_;
   }
   SurfaceGroup surface_group(const Model& model, const std::vector<int>& nodes, const std::vector<Mat3>& axes, int node) {
     SurfaceGroup group;
     group.node = node;
+    group.id = group_count_++;
     const std::size_t first = surface_points_.size();
     // The geometry names the points by their place in the whole list.
     group.geometry = detail::surface_support_geometry(model, nodes, half_width_, axes, surface_points_);
     for (std::size_t i = first; i < surface_points_.size(); ++i) group.points.push_back(static_cast<int>(i));
+    if (node >= 0)
+      for (const auto& face : group.geometry.faces) {
+        const auto arm = [&](int k) -> const Vec3& { return surface_points_[face.frame[k]].arm0; };
+        group.rest_normals.push_back((arm(1) - arm(0)).cross(arm(2) - arm(0)).normalized());
+      }
     return group;
   }
 
@@ -587,9 +639,7 @@ class RoomContact {
           continue;
         }
         const detail::SupportFace* point_face =
-            group.geometry.faces.empty()
-                ? nullptr
-                : group.geometry.face_towards([&](int sp) { return point_now(view, sp); }, planes_[p].normal);
+            group.geometry.faces.empty() ? nullptr : face_towards(view, group, planes_[p].normal);
         for (int sp : group.points) {
           ContactState st = point_state_[sp * planes_.size() + p];
           if (g(surface_points_[sp], p, point_plane_force(view, surface_points_[sp], p, share_on(point_face, sp), st)))
@@ -748,6 +798,8 @@ class RoomContact {
   std::vector<ContactState> point_state_, point_trial_;
   std::vector<char> point_status_;
   std::vector<double> point_share_;
+  std::vector<char> group_near_, group_state_live_;  // per group and plane
+  int group_count_ = 0;
   std::vector<char> plane_status_;  // per node and plane: status_of its contact at the last evaluation
   bool pair_history_ = false;
   std::vector<Vec3> x_broad_;  // node positions at the last broad phase

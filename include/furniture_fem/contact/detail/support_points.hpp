@@ -294,9 +294,11 @@ inline std::vector<Mat3> cube_axes(const Model& model) {
 inline SupportGeometry surface_support_geometry(const Model& model, const std::vector<int>& nodes,
                                                 const std::vector<double>& half_width, const std::vector<Mat3>& axes,
                                                 std::vector<SurfacePoint>& points) {
-  const std::size_t first = points.size();
-  support::Points P(first);
-  std::vector<int> owner(first, -1), ids;
+  // The corners are numbered from 0 here (the hull's canonical order depends only on their relative
+  // order), then as their place in `points`.
+  support::Points P;
+  std::vector<int> owner, ids;
+  std::vector<SurfacePoint> corners;
   for (int n : nodes) {
     const double c = std::isfinite(half_width[n]) ? half_width[n] : 0.0;
     for (int corner = 0; corner < 8; ++corner) {
@@ -305,20 +307,18 @@ inline SupportGeometry surface_support_geometry(const Model& model, const std::v
       ids.push_back(static_cast<int>(P.size()));
       P.push_back(model.node(n).X + arm);
       owner.push_back(n);
-      points.push_back({n, arm});
+      corners.push_back({n, arm});
     }
   }
   SupportGeometry g = hull_geometry(P, ids, owner);
   // Only the hull's vertices are contact points: keep those, renumbered in order.
   std::vector<int> renumber(P.size(), -1);
-  std::vector<SurfacePoint> kept(points.begin(), points.begin() + static_cast<std::ptrdiff_t>(first));
-  for (int i : g.vertices) renumber[i] = static_cast<int>(kept.size()), kept.push_back(points[i]);
+  for (int i : g.vertices) renumber[i] = static_cast<int>(points.size()), points.push_back(corners[i]);
   for (int& i : g.vertices) i = renumber[i];
   for (auto& f : g.faces) {
     for (int& i : f.vertices) i = renumber[i];
     for (int& i : f.frame) i = renumber[i];
   }
-  points = std::move(kept);
   return g;
 }
 
