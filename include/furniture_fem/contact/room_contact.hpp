@@ -317,7 +317,8 @@ class RoomContact {
     const Model& model = view.model;
     tangents_.clear();
     plane_applied_.clear();
-    update_support_shares(view);
+    update_reach(view, only_implicit);
+    update_support_shares(view, only_implicit);
     plane_status_.resize(share_.size());
     for (int n : plane_nodes_) {
       const int body = model.node(n).body;
@@ -354,21 +355,66 @@ class RoomContact {
     const size_t np = planes_.size();
     for (std::size_t body = 0; body < surface_groups_.size(); ++body) {
       if (only_implicit && !bodies_[body].implicit) continue;
-      for (const auto& group : surface_groups_[body]) {
-        char* near = &group_near_[group.id * np];
-        for (size_t p = 0; p < np; ++p) {
-          const bool now = !beyond_reach(view, group, p);
-          // Out of reach now: its points' statuses go to 0 (once); their trial states are not read
-          // (commit_point_states empties their committed states instead).
-          if (!now && near[p])
-            for (int sp : group.points) point_status_[sp * np + p] = 0;
-          near[p] = now;
-        }
+      for (int g : reach_[body].groups) {
+        const SurfaceGroup& group = surface_groups_[body][g];
+        const char* near = &group_near_[group.id * np];
         for (int sp : group.points)
           for (size_t p = 0; p < np; ++p)
             if (near[p]) surface_point_contact(view, f, sp, p);
       }
     }
+  }
+  // Which cubes are within reach of each plane now (group_near_), for the bodies evaluated: those of a
+  // body's list (cubes_in_reach) tested, the others out of reach. Out of reach now: the cube's points'
+  // statuses go to 0 (once); their trial states are not read (commit_point_states empties their
+  // committed states instead).
+  void update_reach(const ContactView& view, bool only_implicit) {
+    const size_t np = planes_.size();
+    for (std::size_t body = 0; body < surface_groups_.size(); ++body) {
+      if (only_implicit && !bodies_[body].implicit) continue;
+      for (int g : cubes_in_reach(view, body)) {
+        const SurfaceGroup& group = surface_groups_[body][g];
+        for (size_t p = 0; p < np; ++p) set_near(group, p, !beyond_reach(view, group, p));
+      }
+    }
+  }
+  void set_near(const SurfaceGroup& group, size_t p, bool now) {
+    const size_t np = planes_.size();
+    char& near = group_near_[group.id * np + p];
+    if (!now && near)
+      for (int sp : group.points) point_status_[sp * np + p] = 0;
+    near = now;
+  }
+  // A body's cubes that may reach a plane: those whose node was within 1.75 c + margin of one when the
+  // list was made, made again as soon as one of the body's nodes has moved more than `margin` since
+  // (the others cannot have come within 1.75 c). A rigid body's one hull is always on it.
+  const std::vector<int>& cubes_in_reach(const ContactView& view, std::size_t body) {
+    ReachList& r = reach_[body];
+    const auto& groups = surface_groups_[body];
+    if (groups.size() == 1 && groups[0].node < 0) return r.groups;  // set by rebuild_surface_points
+    bool moved = r.x.size() != groups.size();
+    for (std::size_t i = 0; i < groups.size() && !moved; ++i)
+      moved = (view.x[groups[i].node] - r.x[i]).squaredNorm() > margin * margin;
+    if (!moved) return r.groups;
+    r.x.resize(groups.size());
+    r.groups.clear();
+    for (std::size_t i = 0; i < groups.size(); ++i) {
+      const SurfaceGroup& group = groups[i];
+      const Vec3& x = view.x[group.node];
+      r.x[i] = x;
+      bool can_reach = false;
+      for (const RigidPlane& pl : planes_)
+        can_reach = can_reach || (x - pl.point).dot(pl.normal) <= 1.75 * half_width_[group.node] + margin + 1e-9;
+      if (can_reach) {
+        r.groups.push_back(static_cast<int>(i));
+        continue;
+      }
+      const char* live = &group_state_live_[group.id * planes_.size()];
+      for (size_t p = 0; p < planes_.size(); ++p) set_near(group, p, false);
+      if (std::any_of(live, live + planes_.size(), [](char c) { return c != 0; }))
+        left_reach_.emplace_back(static_cast<int>(body), static_cast<int>(i));  // its history: emptied at commit
+    }
+    return r.groups;
   }
   void surface_point_contact(const ContactView& view, Eigen::VectorXd& f, int sp, size_t p) {
     const auto& pt = surface_points_[sp];
@@ -397,23 +443,27 @@ class RoomContact {
     const RigidPlane& pl = planes_[p];
     return (view.x[group.node] - pl.point).dot(pl.normal) > 1.75 * half_width_[group.node];
   }
-  // The surface points' committed states: a group's last evaluated trials where it was within reach of
-  // the plane, no history where not. Only states that may hold a history are written: most nodes of a
-  // flexible body are far from every plane, and their states stay empty.
+  // The surface points' committed states: a cube's last evaluated trials where it was within reach of
+  // the plane, no history where not. Only states that may hold a history are written: those of the
+  // cubes in reach lists, and of cubes that left them since the last commit.
   void commit_point_states() {
+    for (std::size_t body = 0; body < surface_groups_.size(); ++body)
+      for (int g : reach_[body].groups) commit_point_states(surface_groups_[body][g]);
+    for (const auto& [body, g] : left_reach_) commit_point_states(surface_groups_[body][g]);
+    left_reach_.clear();
+  }
+  void commit_point_states(const SurfaceGroup& group) {
     const size_t np = planes_.size();
-    for (const auto& groups : surface_groups_)
-      for (const auto& group : groups)
-        for (size_t p = 0; p < np; ++p) {
-          const size_t gp = group.id * np + p;
-          if (group_near_[gp]) {
-            for (int sp : group.points) point_state_[sp * np + p] = point_trial_[sp * np + p];
-            group_state_live_[gp] = 1;
-          } else if (group_state_live_[gp]) {
-            for (int sp : group.points) point_state_[sp * np + p] = ContactState{};
-            group_state_live_[gp] = 0;
-          }
-        }
+    for (size_t p = 0; p < np; ++p) {
+      const size_t gp = group.id * np + p;
+      if (group_near_[gp]) {
+        for (int sp : group.points) point_state_[sp * np + p] = point_trial_[sp * np + p];
+        group_state_live_[gp] = 1;
+      } else if (group_state_live_[gp]) {
+        for (int sp : group.points) point_state_[sp * np + p] = ContactState{};
+        group_state_live_[gp] = 0;
+      }
+    }
   }
 
   // A surface point against a plane: its position and velocity now (its offset turned with its node),
@@ -486,7 +536,7 @@ class RoomContact {
 
   // Each rigid body's support points against each plane: those of the hull face turned towards the
   // plane take that face's share, the others their own node's (a corner the body tips onto).
-  void update_support_shares(const ContactView& view) {
+  void update_support_shares(const ContactView& view, bool only_implicit) {
     const size_t np = planes_.size();
     for (const auto& sg : support_) {
       if (sg.faces.empty()) continue;
@@ -496,16 +546,19 @@ class RoomContact {
           for (int n : face->vertices) share_[n * np + p] = face->share;
       }
     }
-    for (const auto& groups : surface_groups_)
-      for (const auto& group : groups) {
+    for (std::size_t body = 0; body < surface_groups_.size(); ++body) {
+      if (only_implicit && !bodies_[body].implicit) continue;
+      for (int g : reach_[body].groups) {
+        const SurfaceGroup& group = surface_groups_[body][g];
         if (group.geometry.faces.empty()) continue;
         for (size_t p = 0; p < np; ++p) {
-          if (beyond_reach(view, group, p)) continue;
+          if (!group_near_[group.id * np + p]) continue;
           for (int sp : group.points) point_share_[sp * np + p] = 1.0;
           if (const auto* face = face_towards(view, group, planes_[p].normal))
             for (int sp : face->vertices) point_share_[sp * np + p] = face->share;
         }
       }
+    }
   }
   // The group's face that looks most directly into a plane of unit normal n. A node's cube turns with
   // its node, so its faces' normals are their rest normals turned: compare those with n turned back
@@ -567,6 +620,10 @@ class RoomContact {
     // may hold a history (commit_point_states).
     group_near_.assign(group_count_ * planes_.size(), 0);
     group_state_live_ = group_near_;
+    reach_.assign(bodies_.size(), ReachList{});
+    left_reach_.clear();
+    for (std::size_t b = 0; b < bodies_.size(); ++b)
+      if (surface_groups_[b].size() == 1 && surface_groups_[b][0].node < 0) reach_[b].groups = {0};
   }
   SurfaceGroup surface_group(const Model& model, const std::vector<int>& nodes, const std::vector<Mat3>& axes, int node) {
     SurfaceGroup group;
@@ -799,6 +856,12 @@ class RoomContact {
   std::vector<char> point_status_;
   std::vector<double> point_share_;
   std::vector<char> group_near_, group_state_live_;  // per group and plane
+  struct ReachList {
+    std::vector<int> groups;  // indices into the body's surface_groups_, ascending
+    std::vector<Vec3> x;      // its cubes' nodes when it was made
+  };
+  std::vector<ReachList> reach_;  // per body (cubes_in_reach)
+  std::vector<std::pair<int, int>> left_reach_;  // (body, group) out of a reach list since the last commit
   int group_count_ = 0;
   std::vector<char> plane_status_;  // per node and plane: status_of its contact at the last evaluation
   bool pair_history_ = false;
