@@ -394,8 +394,9 @@ class RoomContact {
     if (groups.size() == 1 && groups[0].node < 0) return r.groups;  // set by rebuild_surface_points
     bool moved = r.x.size() != groups.size();
     for (std::size_t i = 0; i < groups.size() && !moved; ++i)
-      moved = (view.x[groups[i].node] - r.x[i]).squaredNorm() > margin * margin;
+      moved = (view.x[groups[i].node] - r.x[i]).squaredNorm() > r.margin * r.margin;
     if (!moved) return r.groups;
+    r.margin = margin;  // the list's own: `margin` may be changed between two evaluations
     r.x.resize(groups.size());
     r.groups.clear();
     for (std::size_t i = 0; i < groups.size(); ++i) {
@@ -404,7 +405,7 @@ class RoomContact {
       r.x[i] = x;
       bool can_reach = false;
       for (const RigidPlane& pl : planes_)
-        can_reach = can_reach || (x - pl.point).dot(pl.normal) <= 1.75 * half_width_[group.node] + margin + 1e-9;
+        can_reach = can_reach || (x - pl.point).dot(pl.normal) <= 1.75 * half_width_[group.node] + r.margin + 1e-9;
       if (can_reach) {
         r.groups.push_back(static_cast<int>(i));
         continue;
@@ -859,6 +860,7 @@ class RoomContact {
   struct ReachList {
     std::vector<int> groups;  // indices into the body's surface_groups_, ascending
     std::vector<Vec3> x;      // its cubes' nodes when it was made
+    double margin = 0;        // the margin it was made with
   };
   std::vector<ReachList> reach_;  // per body (cubes_in_reach)
   std::vector<std::pair<int, int>> left_reach_;  // (body, group) out of a reach list since the last commit
