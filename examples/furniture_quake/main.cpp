@@ -146,6 +146,7 @@ SceneSpec read_scene(const CommandLine& cl) {
   spec.ground_motion.source = MotionSource::synthetic;
   spec.ground_motion.pga = 8.0;
   spec.ground_motion.dimensions = MotionDimensions::three_d;
+  spec.contact.plane_contact_at = PlaneContactAt::surfaces;  // not the paper's centre lines
   spec.duration = 10.0;
   spec.outputs.folder = "results/default";
   return spec;

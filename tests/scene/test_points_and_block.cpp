@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <furniture_fem/scene/scene_runner.hpp>
+#include <furniture_fem/scene/paper_configurations.hpp>
 
 #include <algorithm>
 #include <array>
@@ -379,11 +380,13 @@ TEST_CASE("a rigid cabinet touching the floor at its members' surfaces tips at g
 
 TEST_CASE("contact.plane_contact_at: read, written back, named errors", "[scene][surface][errors]") {
   json j = block_scene(ramp);
-  j["contact"] = {{"plane_contact_at", "surfaces"}};
-  const SceneSpec s = parse_scene_json(j, "surface.json");
-  CHECK(s.contact.plane_contact_at == PlaneContactAt::surfaces);
-  CHECK(parse_scene_json(to_json(s), "again.json").contact.plane_contact_at == PlaneContactAt::surfaces);
-  CHECK(parse_scene_json(block_scene(ramp), "default.json").contact.plane_contact_at == PlaneContactAt::centre_lines);
+  // The default is the surfaces; the paper's centre lines are asked for by name.
+  CHECK(parse_scene_json(block_scene(ramp), "default.json").contact.plane_contact_at == PlaneContactAt::surfaces);
+  j["contact"] = {{"plane_contact_at", "centre_lines"}};
+  const SceneSpec s = parse_scene_json(j, "centre.json");
+  CHECK(s.contact.plane_contact_at == PlaneContactAt::centre_lines);
+  CHECK(parse_scene_json(to_json(s), "again.json").contact.plane_contact_at == PlaneContactAt::centre_lines);
+  CHECK(configuration(3).contact.plane_contact_at == PlaneContactAt::centre_lines);
   j["contact"]["plane_contact_at"] = "surface";
   CHECK_THAT(read_error(j), Contains("contact.plane_contact_at") && Contains("surfaces"));
   // Flexible items touch at their surfaces too (their nodes' cubes): a scene of full items is read.

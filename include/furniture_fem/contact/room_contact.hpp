@@ -51,6 +51,7 @@ struct BodyContact {
   std::vector<int> caster_nodes;                     // nodes with their own (low) floor friction
   double caster_mu = -1;                             // < 0: the body's floor mu
   bool implicit = true;  // its floor and wall contact inside the implicit step (with RoomContact::implicit)
+  bool at_nodes = false;  // floor and walls at its nodes even with set_surface (its nodes are placed for it)
 };
 
 // A rigid plane: points with (x - point) . normal >= 0 are outside. Bounded by half extents along
@@ -587,13 +588,15 @@ class RoomContact {
     return w;
   }
 
+  bool surface_at(int body) const { return surface_on_ && !bodies_[body].at_nodes; }
   // A body's contact at the centre lines: a rigid body's hull vertices, a flexible body's every node;
-  // none with set_surface (its surface points instead).
+  // none with set_surface (its surface points instead) unless the body asks for its nodes.
   void set_centre_line_geometry(const Model& model, int body) {
     const auto& nodes = model.body(body).nodes;
     const bool rigid = rigid_[body];
-    support_.at(body) = rigid && !surface_on_ ? detail::support_geometry(model, nodes) : detail::SupportGeometry{};
-    for (int n : nodes) plane_node_[n] = !rigid && !surface_on_;
+    const bool surface = surface_at(body);
+    support_.at(body) = rigid && !surface ? detail::support_geometry(model, nodes) : detail::SupportGeometry{};
+    for (int n : nodes) plane_node_[n] = !rigid && !surface;
     for (int n : support_[body].vertices) plane_node_[n] = 1;
   }
 
@@ -607,6 +610,7 @@ class RoomContact {
       const std::vector<Mat3> axes = detail::cube_axes(model);
       for (std::size_t b = 0; b < bodies_.size(); ++b) {
         const auto& nodes = model.body(static_cast<int>(b)).nodes;
+        if (!surface_at(static_cast<int>(b))) continue;
         if (rigid_[b]) surface_groups_[b].push_back(surface_group(model, nodes, axes, -1));
         else
           for (int n : nodes) surface_groups_[b].push_back(surface_group(model, {n}, axes, n));

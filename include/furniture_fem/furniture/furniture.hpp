@@ -106,6 +106,9 @@ struct ItemContact {
   double mu_item = mu_between_furniture;
   int long_axis = 0;           // item-frame axis of the longer edge: 0 = x (W >= D), 1 = y
   bool casters = false;        // the item rolls on casters (its floor mu are caster values)
+  // Its builder placed the nodes so that their contact distance reaches the solid's faces (the block):
+  // floor and walls touch its nodes whatever the scene's plane_contact_at.
+  bool at_nodes = false;
 
   // Table 4 as printed (two rows swap Table 2's long/short values; see paper/README.md).
   static ItemContact paper(PaperItem item) {

@@ -55,6 +55,7 @@ inline SceneSpec configuration(int k, const std::string& records_dir = default_r
   s.duration = 12.0;
   s.dt = 1e-3;
   s.contact.law = law_kind<PaperAnisotropicSceneLaw>;
+  s.contact.plane_contact_at = PlaneContactAt::centre_lines;  // the paper's code: contact at the nodes
   s.integrator = {IntegratorKind::paper_newmark, 0.5, false};
   s.solver = SolverKind::direct;
   s.outputs.folder = "out/configuration_" + std::to_string(k);

@@ -299,6 +299,7 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
     bc.long_axis_node_a = it.long_axis_nodes[0];
     bc.long_axis_node_b = it.long_axis_nodes[1];
     bc.caster_nodes = it.caster_nodes;
+    bc.at_nodes = c.at_nodes;
     out.at(it.body) = bc;
   }
   return out;

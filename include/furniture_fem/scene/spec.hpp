@@ -159,7 +159,9 @@ struct ContactSpec {
   // regularised by velocity_regularisation instead (it creeps). Not read by stick_slip (its own spring);
   // used only by items whose contact is implicit.
   double stick_length = 1e-5;
-  PlaneContactAt plane_contact_at = PlaneContactAt::centre_lines;
+  // Where floor and wall contact act on an item's members: at their outer surfaces (the paper's code
+  // and its reproductions, configuration(k), use the centre lines, half a member's width inside).
+  PlaneContactAt plane_contact_at = PlaneContactAt::surfaces;
   ContactOverrides floor, wall, item;
 };
 

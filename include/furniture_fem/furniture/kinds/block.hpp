@@ -144,6 +144,7 @@ inline ItemInfo build_block(Model& model, const Placement& placement, double W, 
   const auto& tall = paper_item(PaperItem::tall_cabinet);
   info.contact = ItemContact::from_rule(M, opts.mu_static_long.value_or(tall.mu_static_long),
                                         opts.mu_static_short.value_or(tall.mu_static_short), long_axis);
+  info.contact.at_nodes = true;  // the bottom corners' placement above is its contact at the surface
   for (int n : model.body(info.body).nodes)
     if (info.to_local(model.node(n).X).z() <= z0 + detail::wire_tolerance) info.bottom_nodes.push_back(n);
   info.long_axis_nodes = detail::longest_line_along(model, info, long_axis);
