@@ -123,6 +123,10 @@ class RoomContact {
     // Item-item pairs keep a history when the law has one, or when any friction sticks by return mapping.
     pair_history_ = law_has_history;
     for (const auto& b : bodies_) pair_history_ = pair_history_ || b.item.stick_length > 0;
+    // A body's floor and wall contacts keep a history on the same terms. Without one the surface
+    // points' states are written by the law and never read: they are neither copied nor committed.
+    for (const auto& b : bodies_)
+      plane_history_.push_back(law_has_history || b.floor.stick_length > 0 || b.wall.stick_length > 0);
   }
   void add_obstacle(MeshObstacle obstacle) { obstacles_.push_back(std::move(obstacle)); }
 
@@ -422,8 +426,10 @@ class RoomContact {
     const auto& pt = surface_points_[sp];
     const int n = pt.node, body = view.model.node(n).body;
     const size_t si = sp * planes_.size() + p;
-    point_trial_[si] = point_state_[si];
-    const PointContact pc = point_plane_force(view, pt, p, point_share_[si], point_trial_[si]);
+    ContactState scratch;
+    ContactState& state = plane_history_[body] ? point_trial_[si] : scratch;
+    if (plane_history_[body]) state = point_state_[si];
+    const PointContact pc = point_plane_force(view, pt, p, point_share_[si], state);
     const ContactForce& cf = pc.force;
     point_status_[si] = status_of(cf);
     if (!cf.in_contact) return;
@@ -450,7 +456,8 @@ class RoomContact {
   // cubes in reach lists, and of cubes that left them since the last commit.
   void commit_point_states() {
     for (std::size_t body = 0; body < surface_groups_.size(); ++body)
-      for (int g : reach_[body].groups) commit_point_states(surface_groups_[body][g]);
+      if (plane_history_[body])
+        for (int g : reach_[body].groups) commit_point_states(surface_groups_[body][g]);
     for (const auto& [body, g] : left_reach_) commit_point_states(surface_groups_[body][g]);
     left_reach_.clear();
   }
@@ -871,6 +878,7 @@ class RoomContact {
   int group_count_ = 0;
   std::vector<char> plane_status_;  // per node and plane: status_of its contact at the last evaluation
   bool pair_history_ = false;
+  std::vector<char> plane_history_;  // per body: its floor and wall contacts keep a history
   std::vector<Vec3> x_broad_;  // node positions at the last broad phase
   Timings timings_;
   long steps_ = 0, broad_runs_ = 0;
