@@ -41,6 +41,24 @@ struct SegmentSegmentClosest {
   bool parallel = false;  // the parallel rule below was used (also set for zero-length segments)
 };
 
+// Whether segments A and B are certainly more than `distance` apart: the distance of their bounding
+// boxes, a lower bound of the distance of any point of A to any point of B, exceeds it by more than
+// `slack` (the round-off of closest_points_segment_segment, about 1e-15 of the coordinates). When true,
+// closest_points_segment_segment's distance exceeds `distance` too; a narrow phase may pass the pair
+// over without it. (A pair with a non-finite point has no contact there either: its distance is NaN.)
+inline bool segments_apart_beyond(const Vec3& p_WA0, const Vec3& p_WA1, const Vec3& p_WB0, const Vec3& p_WB1,
+                                  double distance, double slack = 1e-9) {
+  double gap2 = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double a_lo = std::min(p_WA0[i], p_WA1[i]), a_hi = std::max(p_WA0[i], p_WA1[i]);
+    const double b_lo = std::min(p_WB0[i], p_WB1[i]), b_hi = std::max(p_WB0[i], p_WB1[i]);
+    const double gap = std::max({a_lo - b_hi, b_lo - a_hi, 0.0});
+    gap2 += gap * gap;
+  }
+  const double bound = distance + slack;
+  return gap2 > bound * bound;
+}
+
 // Degenerate cases:
 //  - both segments of zero length: s = t = 0 (the two points);
 //  - one segment of zero length: that point against the other segment;

@@ -749,6 +749,11 @@ class RoomContact {
     for (const auto& [ea, eb] : candidates_) {
       const auto& A = model.elements()[ea];
       const auto& B = model.elements()[eb];
+      // Most candidates are apart (the broad phase's boxes are `margin` larger): their boxes show it
+      // before the closest points, the history lookup and the law. Apart, evaluate_segment_pair
+      // gives no force and no history, and the loop goes on, as here.
+      const double L = pair_contact_distance(model, ea, eb);
+      if (segments_apart_beyond(view.x[A.n1], view.x[A.n2], view.x[B.n1], view.x[B.n2], L)) continue;
       ContactState st = committed_pair_state(ea, eb);
       const auto nf = evaluate_segment_pair(law_, segment_pair(view, ea, eb), pair_params(model, ea, eb), st);
       if (pair_history_ && nf.in_contact) pair_trial_[key(ea, eb)] = st;
@@ -788,9 +793,13 @@ class RoomContact {
     sp.va1 = view.v.template segment<3>(6 * A.n2);
     sp.vb0 = view.v.template segment<3>(6 * B.n1);
     sp.vb1 = view.v.template segment<3>(6 * B.n2);
-    sp.L = 0.5 * (model.section_of(ea).contact_width() + model.section_of(eb).contact_width());
+    sp.L = pair_contact_distance(model, ea, eb);
     sp.dt = view.dt;
     return sp;
+  }
+  // The centre lines' distance at which two elements touch: half the sum of their widths.
+  static double pair_contact_distance(const Model& model, int ea, int eb) {
+    return 0.5 * (model.section_of(ea).contact_width() + model.section_of(eb).contact_width());
   }
   ContactParams pair_params(const Model& model, int ea, int eb) const {
     return ContactParams::pair(bodies_[model.elements()[ea].body].item, bodies_[model.elements()[eb].body].item);
