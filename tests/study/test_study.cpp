@@ -355,7 +355,10 @@ TEST_CASE("study figures: fragility fits with observed fractions, tilts against 
   // The fitted "slid" curve of the crate crosses P = 0.5 at its median, in its colour (the first);
   // without the fits, that pixel is not in it.
   const LinePlot plot = detail::fragility_plot(s, rep);
-  const PanelLayout& crate = plot.layout(detail::study_figure_width, two_panels).panels.at(0);
+  // The layout kept alive: a reference into the temporary's panels dangled (AddressSanitizer,
+  // heap-use-after-free in Axis::to_pixel; a Release build read the freed memory unnoticed).
+  const PlotLayout layout = plot.layout(detail::study_figure_width, two_panels);
+  const PanelLayout& crate = layout.panels.at(0);
   const int x = int(std::lround(crate.x.to_pixel(slid->fit.theta))), y = int(std::lround(crate.y.to_pixel(0.5)));
   const png_test::Png png = png_test::decode_file(dir + "/fragility.png");
   const RGB at{png.at(x, y, 0), png.at(x, y, 1), png.at(x, y, 2)};
