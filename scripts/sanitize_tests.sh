@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The test groups under clang's AddressSanitizer and UndefinedBehaviorSanitizer (with
 # float-cast-overflow), -O1, in build-asan (docs/fuzzing.md). Usage: scripts/sanitize_tests.sh [TEST...]
-# TEST: a ctest name (a test group such as excitation or scene, or corpus: the malformed-input corpus
-# through a sanitized furniture_quake), or "all" (every test); default: excitation io, the input-facing
-# groups that fit CI's budget (scene and corpus take about 35 min to build here: docs/fuzzing.md).
+# TEST: a ctest name (a test group such as excitation or scene; corpus: the malformed-input corpus
+# through a sanitized furniture_quake; command_line: its exit codes, signals and resume), or "all"
+# (every test); default: excitation io, the input-facing groups that fit CI's budget (scene and corpus take about 35 min to build here: docs/fuzzing.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tests="${*:-excitation io}"
@@ -19,7 +19,9 @@ regex=""
 for t in $tests; do
   case "$t" in
     all) targets="all"; regex="" ; break ;;
+    # The main program's own tests: the corpus, and its command line (exit codes, signals, resume).
     corpus) targets="$targets furniture_quake" ;;
+    command_line) targets="$targets furniture_quake"; regex="$regex|^command_line_resume\$" ;;
     *) targets="$targets test_$t" ;;
   esac
   regex="$regex|^$t\$"
