@@ -3,7 +3,8 @@
 # float-cast-overflow), -O1, in build-asan (docs/fuzzing.md). Usage: scripts/sanitize_tests.sh [TEST...]
 # TEST: a ctest name (a test group such as excitation or scene; corpus: the malformed-input corpus
 # through a sanitized furniture_quake; command_line: its exit codes, signals and resume), or "all"
-# (every test); default: excitation io, the input-facing groups that fit CI's budget (scene and corpus take about 35 min to build here: docs/fuzzing.md).
+# (every test); default: excitation io, the input-facing groups that fit CI's budget (scene and
+# corpus take about 35 min to build here: docs/fuzzing.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tests="${*:-excitation io}"
