@@ -68,6 +68,39 @@ TEST_CASE("free fall under gravity is exact", "[dynamics]") {
   }
 }
 
+TEST_CASE("first_non_finite_node names the first node whose velocity is not finite", "[dynamics][input]") {
+  // The runner's check after every step (scene/runner.hpp): one pass per array, then the node looked
+  // for. A node's velocity is the state a user can set directly; a NaN in a rotation rate at the
+  // middle of the array and an infinity at the last node (the four-lane sum's tail) are both found.
+  LFrame f;
+  Simulation<AsiGaussTimoshenko> sim(f.model, Newmark::paper(), SimulationOptions{});
+  sim.step();
+  const int last = f.model.num_nodes() - 1;
+  CHECK(sim.first_non_finite_node() == -1);
+  sim.set_velocity(last, (Vec6() << 0, 0, 0, 0, 0, INFINITY).finished());
+  CHECK(sim.first_non_finite_node() == last);
+  sim.set_velocity(5, (Vec6() << 0, 0, 0, NAN, 0, 0).finished());
+  CHECK(sim.first_non_finite_node() == 5);
+}
+
+TEST_CASE("a step whose increment is not finite stops with a diagnosis, flexible and rigid", "[dynamics][input]") {
+  // An infinite velocity gives an infinite Newmark acceleration, so the step's residual and its
+  // increment are not finite. A rigid body's 6 x 6 solve returns it, and the check after the solve
+  // (detail::nodes_finite over the body's nodes) stops the step; a flexible body's linear solver
+  // finds its solution not finite first. Neither commits the step.
+  for (const bool rigid : {false, true}) {
+    LFrame f;
+    Simulation<AsiGaussTimoshenko> sim(f.model, Newmark::paper(), SimulationOptions{});
+    sim.set_rigid(f.body, rigid);
+    sim.step();
+    sim.set_velocity(5, (Vec6() << INFINITY, 0, 0, 0, 0, 0).finished());
+    INFO((rigid ? "rigid" : "flexible"));
+    CHECK_THROWS_WITH(sim.step(), Catch::Contains(rigid ? "the displacement increment is not finite"
+                                                        : "the solution is not finite"));
+    CHECK(sim.steps() == 1);
+  }
+}
+
 TEST_CASE("a spinning free frame conserves momentum", "[dynamics][conservation]") {
   // No gravity, a rigid-body initial velocity (v0 + w x (x - c), |w| = 6.2 rad/s: about one turn a
   // second) and three seconds of motion (3000 steps of 1 ms). The internal forces of every element

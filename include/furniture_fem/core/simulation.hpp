@@ -311,7 +311,21 @@ class Simulation {
   Vec6 velocity(int n) const { return v_.segment<6>(6 * n); }
   Vec6 acceleration(int n) const { return a_.segment<6>(6 * n); }
   const std::vector<Vec3>& positions() const { return x_; }
+  const std::vector<Vec3>& displacements() const { return u_; }
+  const std::vector<Mat3>& rotations() const { return R_; }
   const Eigen::VectorXd& velocities() const { return v_; }
+  const Eigen::VectorXd& accelerations() const { return a_; }
+  // The first node whose position, rotation or velocity is not finite, -1 if none: one branch-free
+  // pass over each array, the node looked for only when one is not finite.
+  int first_non_finite_node() const {
+    const auto n = static_cast<Eigen::Index>(x_.size());
+    if (n == 0 || (detail::all_finite(x_.front().data(), 3 * n) && detail::all_finite(R_.front().data(), 9 * n) &&
+                   detail::all_finite(v_)))
+      return -1;
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (!(x_[i].allFinite() && R_[i].allFinite() && v_.segment<6>(6 * i).allFinite())) return static_cast<int>(i);
+    return -1;
+  }
   double nodal_mass(int n) const { return mass_[6 * n]; }
   double nodal_rotary_inertia(int n) const { return mass_[6 * n + 3]; }
   // A node's rotary inertia tensor (world axes) as the dynamics use it: on a rigid body the initial
@@ -487,7 +501,7 @@ class Simulation {
     resolve_changed_contacts(std::span<const int>(&b, 1));
     if (s.solve_failed) return;
     if (opt_.check_finite) {
-      for (int n : systems_[b].nodes) s.not_finite = s.not_finite || !Du_.segment<6>(6 * n).allFinite();
+      s.not_finite = s.not_finite || !detail::nodes_finite(Du_, systems_[b].nodes);
       if (s.not_finite) return;
     }
     commit_body(b, s);
@@ -946,7 +960,7 @@ class Simulation {
     if (opt_.check_finite) {
       for (int m : members) {
         BodyStepSums& s = sums_[m];
-        for (int n : systems_[m].nodes) s.not_finite = s.not_finite || !Du_.segment<6>(6 * n).allFinite();
+        s.not_finite = s.not_finite || !detail::nodes_finite(Du_, systems_[m].nodes);
         if (s.not_finite) return;
       }
     }

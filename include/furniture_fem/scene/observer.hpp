@@ -57,6 +57,13 @@ class SimulationView {
   virtual std::string_view element_name() const = 0;
 };
 
+// Every node's state at one time, in the simulation's own layout (the runner keeps the last step's).
+struct NodeStates {
+  std::vector<Vec3> x, u;  // positions, displacements
+  std::vector<Mat3> R;     // rotations
+  Eigen::VectorXd v, a;    // velocities and accelerations, six per node
+};
+
 // The stepping side, seen only by the runner.
 class SteppedSimulation : public SimulationView {
  public:
@@ -64,6 +71,10 @@ class SteppedSimulation : public SimulationView {
   // Simulation::save_state / load_state (core/checkpoint.hpp).
   virtual void save_state(StateWriter& w) const = 0;
   virtual void load_state(StateReader& r) = 0;
+  // Every node's state copied into `into` in one call, array by array (five virtual calls per node
+  // took 5 % of a rigid study run: docs/performance.md section 8); returns the first node whose
+  // position, rotation or velocity is not finite, -1 if none.
+  virtual int copy_node_states(NodeStates& into) const = 0;
 };
 
 // The scene's outputs requests resolved to nodes and elements (resolve_output_requests, runner.hpp).

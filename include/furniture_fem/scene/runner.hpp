@@ -207,28 +207,17 @@ struct ComposedScene {
 // the ledger of the last history row that passed the energy check; the rest is the live simulation's.
 class LastStepView final : public SimulationView {
  public:
-  LastStepView(const SimulationView& sim, const Model& model, const ResolvedOutputs& requests)
-      : sim_(sim), now_(model.num_nodes()), next_(model.num_nodes()) {
+  LastStepView(const SteppedSimulation& sim, const ResolvedOutputs& requests) : sim_(sim) {
     for (const auto& s : requests.sections) sections_.push_back({s.element, {}});
   }
   void capture() {
-    copy_nodes();
+    sim_.copy_node_states(next_);
     commit();
   }
-  // The nodes' state after a step copied into a spare buffer, checked in the same pass: returns the
-  // first node whose position, rotation or velocity is not finite (-1 if none). commit() makes the
-  // copy the view's state once the observers have seen the step; a step that diverged is never
-  // committed. (Checked, then copied, in two passes over the nodes, this took 4 % of a rigid scene's
-  // run: docs/performance.md section 7.)
-  int copy_nodes_checked() {
-    int bad = -1;
-    for (std::size_t n = 0; n < next_.x.size(); ++n) {
-      copy_node(n);
-      if (bad < 0 && !(next_.x[n].allFinite() && next_.R[n].allFinite() && next_.v[n].allFinite()))
-        bad = static_cast<int>(n);
-    }
-    return bad;
-  }
+  // The nodes' state after a step copied into a spare buffer and checked: returns the first node whose
+  // position, rotation or velocity is not finite (-1 if none). commit() makes the copy the view's
+  // state once the observers have seen the step; a step that diverged is never committed.
+  int copy_nodes_checked() { return sim_.copy_node_states(next_); }
   void commit() {
     std::swap(now_, next_);
     t_ = sim_.time();
@@ -243,8 +232,8 @@ class LastStepView final : public SimulationView {
   const Vec3& position(int n) const override { return now_.x[n]; }
   const Vec3& displacement(int n) const override { return now_.u[n]; }
   const Mat3& rotation(int n) const override { return now_.R[n]; }
-  Vec6 velocity(int n) const override { return now_.v[n]; }
-  Vec6 acceleration(int n) const override { return now_.a[n]; }
+  Vec6 velocity(int n) const override { return now_.v.segment<6>(6 * n); }
+  Vec6 acceleration(int n) const override { return now_.a.segment<6>(6 * n); }
   double nodal_mass(int n) const override { return sim_.nodal_mass(n); }
   SectionForces section_forces(int e) const override {
     for (const auto& [element, f] : sections_)
@@ -260,31 +249,13 @@ class LastStepView final : public SimulationView {
   std::string_view element_name() const override { return sim_.element_name(); }
 
  private:
-  const SimulationView& sim_;
+  const SteppedSimulation& sim_;
   double t_ = 0;
   long steps_ = 0;
-  struct NodeStates {
-    explicit NodeStates(int nodes) : x(nodes), u(nodes), R(nodes), v(nodes), a(nodes) {}
-    std::vector<Vec3> x, u;
-    std::vector<Mat3> R;
-    std::vector<Vec6> v, a;
-  };
   NodeStates now_, next_;  // the view's state; the spare the next step is copied into
   std::vector<PairForce> pair_forces_;
   std::vector<std::pair<int, SectionForces>> sections_;
   EnergyLedger energy_;
-
-  void copy_nodes() {
-    for (std::size_t n = 0; n < next_.x.size(); ++n) copy_node(n);
-  }
-  void copy_node(std::size_t n) {
-    const int i = static_cast<int>(n);
-    next_.x[n] = sim_.position(i);
-    next_.u[n] = sim_.displacement(i);
-    next_.R[n] = sim_.rotation(i);
-    next_.v[n] = sim_.velocity(i);
-    next_.a[n] = sim_.acceleration(i);
-  }
 };
 
 // The energy check at the history rows: a run creating energy ends as "diverged" before anything of
@@ -384,7 +355,7 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
   };
   auto last_checkpoint = std::chrono::steady_clock::now();
   const bool periodic = !run.out_dir.empty() && opt.checkpoint_every > 0;
-  LastStepView last(sim, scene.model, requests);
+  LastStepView last(sim, requests);
   last.capture();
   try {
     while (sim.time() < run.t_end - 0.5 * spec.dt) {

@@ -29,6 +29,14 @@ class SimulationViewOf final : public SteppedSimulation {
   StepInfo step() override { return sim_.step(); }
   void save_state(StateWriter& w) const override { sim_.save_state(w); }
   void load_state(StateReader& r) override { sim_.load_state(r); }
+  int copy_node_states(NodeStates& into) const override {
+    into.x = sim_.positions();
+    into.u = sim_.displacements();
+    into.R = sim_.rotations();
+    into.v = sim_.velocities();
+    into.a = sim_.accelerations();
+    return sim_.first_non_finite_node();
+  }
   double time() const override { return sim_.time(); }
   long steps() const override { return sim_.steps(); }
   const Vec3& position(int n) const override { return sim_.position(n); }
