@@ -318,6 +318,8 @@ class Simulation {
   // The first node whose position, rotation or velocity is not finite, -1 if none: one branch-free
   // pass over each array, the node looked for only when one is not finite.
   int first_non_finite_node() const {
+    static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Mat3) == 9 * sizeof(double),
+                  "the arrays of positions and rotations are read as flat arrays of doubles");
     const auto n = static_cast<Eigen::Index>(x_.size());
     if (n == 0 || (detail::all_finite(x_.front().data(), 3 * n) && detail::all_finite(R_.front().data(), 9 * n) &&
                    detail::all_finite(v_)))
