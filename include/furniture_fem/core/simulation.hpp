@@ -1187,17 +1187,22 @@ class Simulation {
   // of its squared norm and of the squared force scale.
   void residual_body(const detail::BodySystem& bs, const Eigen::VectorXd& fext1, double& num, double& den) {
     const double am = coef_.alpha_m, af = coef_.alpha_f, c = opt_.mass_damping;
-    for (size_t k = 0; k < bs.nodes.size(); ++k)
+    // A node's six DOFs at once (each value by the same operations in the same order as DOF by DOF,
+    // so the same bits; the sums below stay in DOF order).
+    for (size_t k = 0; k < bs.nodes.size(); ++k) {
+      const int i = 6 * bs.nodes[k];
+      const Vec6 fx = fext1.segment<6>(i), fc = fc1_.segment<6>(i), fi = fint_.segment<6>(i), m = mass_.segment<6>(i);
+      const Vec6 inertia = m.cwiseProduct((1 - am) * a_.segment<6>(i) + am * an_.segment<6>(i));
+      const Vec6 damping = (c * m).cwiseProduct((1 - af) * v_.segment<6>(i) + af * vn_.segment<6>(i));
+      Vec6 ri = (1 - af) * (fx + fc - fi) + af * fnet0_.segment<6>(i) - inertia - damping;
+      const Vec6 scale = fx.cwiseProduct(fx) + fi.cwiseProduct(fi) + inertia.cwiseProduct(inertia) + fc.cwiseProduct(fc);
       for (int j = 0; j < 6; ++j) {
-        const int i = 6 * bs.nodes[k] + j;
-        const double f1 = fext1[i] + fc1_[i] - fint_[i];
-        const double inertia = mass_[i] * ((1 - am) * a_[i] + am * an_[i]);
-        const double damping = c * mass_[i] * ((1 - af) * v_[i] + af * vn_[i]);
-        const double ri = bs.fixed[6 * k + j] ? 0.0 : (1 - af) * f1 + af * fnet0_[i] - inertia - damping;
-        r_[i] = ri;
-        num += ri * ri;
-        den += fext1[i] * fext1[i] + fint_[i] * fint_[i] + inertia * inertia + fc1_[i] * fc1_[i];
+        if (bs.fixed[6 * k + j]) ri[j] = 0.0;
+        num += ri[j] * ri[j];
+        den += scale[j];
       }
+      r_.segment<6>(i) = ri;
+    }
   }
   // The whole residual (for diagnoses); returns its norm relative to the force scale.
   double residual() {
