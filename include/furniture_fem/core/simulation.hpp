@@ -1783,6 +1783,12 @@ class Simulation {
       Vec6 R;
       Vec3 c;  // the mass centre the rotations are about
     };
+    // node_rotary_inertia of a node known to be on a rigid body (no look-up of its body).
+    static Mat3 rigid_rotary_inertia(const Simulation& sim, int n) {
+      const int k = sim.rotary_index_[n];
+      if (k < 0) return sim.mass_.template segment<3>(6 * n + 3).asDiagonal();
+      return sim.R_[n] * sim.rotary0_[k] * sim.R_[n].transpose();
+    }
     static ReducedSystem reduced_system(const Simulation& sim, const detail::BodySystem& bs) {
       const double mf = sim.coef_.mass_factor(sim.opt_.dt, sim.opt_.mass_damping);
       const auto& mass = sim.mass_;
@@ -1798,13 +1804,14 @@ class Simulation {
         const Vec3 r = sim.x_[n] - c;
         const Mat3 S = detail::skew(r);  // dtheta x r = -S dtheta
         const double m = mf * mass[6 * n];
-        A.template block<3, 3>(0, 0) += m * Mat3::Identity();
+        // m I on the diagonal only: the off-diagonal terms added +0 to +0 (m >= 0), the same bits.
+        for (int j = 0; j < 3; ++j) A(j, j) += m;
         A.template block<3, 3>(0, 3) -= m * S;
         A.template block<3, 3>(3, 0) += m * S;
         const Vec3 rf = r_nodal.template segment<3>(6 * n), rm = r_nodal.template segment<3>(6 * n + 3);
         R6.template head<3>() += rf;
         R6.template tail<3>() += S * rf + rm;
-        I += mass[6 * n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose()) + sim.node_rotary_inertia(n);
+        I += mass[6 * n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose()) + rigid_rotary_inertia(sim, n);
       }
       if (!sim.static_) add_contact_terms(sim, bs, c, A);
       A.template block<3, 3>(3, 3) += mf * I;
