@@ -83,6 +83,35 @@ TEST_CASE("first_non_finite_node names the first node whose velocity is not fini
   CHECK(sim.first_non_finite_node() == 5);
 }
 
+TEST_CASE("the finiteness checks find one bad value at any place, in the pairs and in the tail", "[dynamics][input]") {
+  // detail::all_finite sums x - x over pairs of lanes, four values at a time, then the tail one by
+  // one; detail::nodes_finite reads a node's six values as three pairs. A NaN or an infinity of
+  // either sign at every place of every length from 0 to 13 (every tail length) is found; large
+  // finite values (x - x is 0) and a bad value on a node not listed are not.
+  for (const double bad : {double(NAN), double(INFINITY), -double(INFINITY)})
+    for (Eigen::Index n = 0; n <= 13; ++n) {
+      Eigen::VectorXd v(n);
+      for (Eigen::Index k = 0; k < n; ++k) v[k] = (k % 2 ? 1.7e308 : -1.7e308) / double(k + 1);
+      CHECK(detail::all_finite(v));
+      for (Eigen::Index k = 0; k < n; ++k) {
+        Eigen::VectorXd w = v;
+        w[k] = bad;
+        INFO("length " << n << ", value " << bad << " at " << k);
+        CHECK_FALSE(detail::all_finite(w));
+      }
+    }
+  const int nodes = 5;
+  const std::vector<int> listed{0, 2, 4};
+  for (const double bad : {double(NAN), double(INFINITY), -double(INFINITY)})
+    for (int i = 0; i < 6 * nodes; ++i) {
+      Eigen::VectorXd v = Eigen::VectorXd::Constant(6 * nodes, 1e300);
+      CHECK(detail::nodes_finite(v, listed));
+      v[i] = bad;
+      INFO("value " << bad << " at DOF " << i);
+      CHECK(detail::nodes_finite(v, listed) == ((i / 6) % 2 == 1));
+    }
+}
+
 TEST_CASE("a step whose increment is not finite stops with a diagnosis, flexible and rigid", "[dynamics][input]") {
   // An infinite velocity gives an infinite Newmark acceleration, so the step's residual and its
   // increment are not finite. A rigid body's 6 x 6 solve returns it, and the check after the solve
