@@ -333,8 +333,13 @@ class Simulation {
   // A node's rotary inertia tensor (world axes) as the dynamics use it: on a rigid body the initial
   // tensor turned with the node, on a flexible one the lumped diagonal in world axes.
   Mat3 node_rotary_inertia(int n) const {
+    if (!systems_[model_.node(n).body].rigid) return mass_.segment<3>(6 * n + 3).asDiagonal();
+    return rigid_node_rotary_inertia(n);
+  }
+  // The same for a node known to be on a rigid body (no look-up of its body: the reduced system's loop).
+  Mat3 rigid_node_rotary_inertia(int n) const {
     const int k = rotary_index_[n];
-    if (k < 0 || !systems_[model_.node(n).body].rigid) return mass_.segment<3>(6 * n + 3).asDiagonal();
+    if (k < 0) return mass_.segment<3>(6 * n + 3).asDiagonal();
     return R_[n] * rotary0_[k] * R_[n].transpose();
   }
   const State& element_state(int e) const { return committed_[e]; }
@@ -1783,12 +1788,6 @@ class Simulation {
       Vec6 R;
       Vec3 c;  // the mass centre the rotations are about
     };
-    // node_rotary_inertia of a node known to be on a rigid body (no look-up of its body).
-    static Mat3 rigid_rotary_inertia(const Simulation& sim, int n) {
-      const int k = sim.rotary_index_[n];
-      if (k < 0) return sim.mass_.template segment<3>(6 * n + 3).asDiagonal();
-      return sim.R_[n] * sim.rotary0_[k] * sim.R_[n].transpose();
-    }
     static ReducedSystem reduced_system(const Simulation& sim, const detail::BodySystem& bs) {
       const double mf = sim.coef_.mass_factor(sim.opt_.dt, sim.opt_.mass_damping);
       const auto& mass = sim.mass_;
@@ -1811,7 +1810,7 @@ class Simulation {
         const Vec3 rf = r_nodal.template segment<3>(6 * n), rm = r_nodal.template segment<3>(6 * n + 3);
         R6.template head<3>() += rf;
         R6.template tail<3>() += S * rf + rm;
-        I += mass[6 * n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose()) + rigid_rotary_inertia(sim, n);
+        I += mass[6 * n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose()) + sim.rigid_node_rotary_inertia(n);
       }
       if (!sim.static_) add_contact_terms(sim, bs, c, A);
       A.template block<3, 3>(3, 3) += mf * I;
