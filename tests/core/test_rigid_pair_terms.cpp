@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <furniture_fem/core/simulation.hpp>
 
+#include <cmath>
 #include <random>
 #include <vector>
 
