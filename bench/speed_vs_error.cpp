@@ -34,6 +34,7 @@
 #include <furniture_fem/scene/scene_runner.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -325,7 +326,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   std::printf("speed vs error: %g s of synthetic 3-D motion (pga %g m/s^2), tall cabinet + desk\n", duration, pga);
-  const Variant refv = reference_variant(reference_refresh);
+  Variant refv = reference_variant(reference_refresh);
   struct Row {
     Variant v;
     Result r;
@@ -343,10 +344,23 @@ int main(int argc, char** argv) {
       return 2;
     }
     const auto value = [](const std::string& t) { return t == "-" ? NAN : std::stod(t); };
+    const std::string logged_reference = "reference (" + refv.label.substr(0, refv.label.rfind('/') + 1);
     std::string line;
     while (std::getline(in, line)) {
       std::istringstream ls(line);
       std::string name, status;
+      // "reference (<label>)...": the logged run's reference (its refresh interval), whatever
+      // --reference-refresh says now.
+      if (line.rfind(logged_reference, 0) == 0) {
+        int refresh = 0;
+        const char* first = line.data() + logged_reference.size();
+        if (const auto [end, ec] = std::from_chars(first, line.data() + line.size(), refresh); ec == std::errc() && refresh > 0)
+          refv = reference_variant(refresh);
+        else
+          std::fprintf(stderr, "%s: no refresh interval in \"%s\"; the reference's label says %d\n", table_from.c_str(),
+                       line.c_str(), refv.refresh);
+        continue;
+      }
       if (line.rfind("  completed, ", 0) == 0) {
         std::sscanf(line.c_str(), "  completed, %d elements, %lf s wall, energy imbalance %lf", &ref.elements, &ref.wall,
                     &ref.energy_imbalance);
