@@ -14,22 +14,19 @@ study defines them (study/report.hpp): slid (final slide above --slide m), tilte
 import argparse
 import csv
 import math
+import os
 import statistics
 import sys
 
-
-def wilson(k, n, z=1.959963984540054):
-    p = k / n
-    d = 1 + z * z / n
-    c = (p + z * z / (2 * n)) / d
-    h = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / d
-    return p, c - h, c + h
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "studies"))
+from summarise import wilson  # noqa: E402  (the study scripts' Wilson interval)
 
 
 def paired_difference(both, only_a, only_b, neither):
     n = both + only_a + only_b + neither
-    pa, la, ua = wilson(both + only_a, n)
-    pb, lb, ub = wilson(both + only_b, n)
+    pa, pb = (both + only_a) / n, (both + only_b) / n
+    la, ua = wilson(both + only_a, n)
+    lb, ub = wilson(both + only_b, n)
     margins = (both + only_a) * (only_b + neither) * (both + only_b) * (only_a + neither)
     cross = both * neither - only_a * only_b
     num = cross - 0.5 * n if cross > 0.5 * n else (cross if cross < 0 else 0.0)
