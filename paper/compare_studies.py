@@ -9,7 +9,8 @@ paired_difference). Also the median and largest change of the continuous outcome
 
 OLD_DIR and NEW_DIR are furniture_study results folders (their realisations.csv). Damage states as the
 study defines them (study/report.hpp): slid (final slide above --slide m), tilted (largest tilt above
---tilt deg), overturned (final state). Runs that did not complete in both are left out.
+--tilt deg), overturned (final state), fallen (tipped past 60 deg or came down more than 5 cm, as
+study/report.hpp's). Runs that did not complete in both are left out.
 """
 import argparse
 import csv
@@ -19,7 +20,7 @@ import statistics
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "studies"))
-from summarise import wilson  # noqa: E402  (the study scripts' Wilson interval)
+from summarise import fallen, wilson  # noqa: E402  (the study scripts' Wilson interval and `fallen`)
 
 
 def paired_difference(both, only_a, only_b, neither):
@@ -59,6 +60,7 @@ def main():
         "slid": lambda r, b: float(r[b + ".slide_m"]) > a.slide,
         "tilted": lambda r, b: float(r[b + ".max_tilt_deg"]) > a.tilt,
         "overturned": lambda r, b: r[b + ".state"] == "overturned",
+        "fallen": lambda r, b: fallen({"max_tilt_deg": float(r[b + ".max_tilt_deg"]), "lift": float(r[b + ".lift_m"])}),
     }
     print(f"{len(keys)} realisations completed in both (old: {a.old}, new: {a.new})")
     print("| body | state | old | new | new - old [95 %] | distinguishable |")

@@ -35,8 +35,9 @@ def wilson(k, n, z=Z95):
 
 
 def fallen(b):
-    # Off its feet: lying (> 60 deg), or back upright after tipping past 60 deg or more than 5 cm lower.
-    return b["state"] in ("overturned", "fell") or b["max_tilt_deg"] > 60
+    # Off its feet at some time: tipped past 60 deg or came down more than 5 cm (off the item it stood on),
+    # whatever it ends as: the study's damage state "fallen" (has_fallen, scene/run_summary.hpp).
+    return b["max_tilt_deg"] > 60 or b["lift"] < -0.05
 
 
 # (case, text, RESULTS.md row, test on the bodies by name)
@@ -79,9 +80,9 @@ def load_study(folder):
             if "." not in col:
                 continue
             body, key = col.rsplit(".", 1)
-            if key in ("state", "slide_m", "max_tilt_deg", "resting_on"):
+            if key in ("state", "slide_m", "max_tilt_deg", "lift_m", "resting_on"):
                 b = bodies.setdefault(body, {})
-                b[{"slide_m": "slide"}.get(key, key)] = value if key in ("state", "resting_on") else float(value)
+                b[{"slide_m": "slide", "lift_m": "lift"}.get(key, key)] = value if key in ("state", "resting_on") else float(value)
         done.append(bodies)
     return case, summary, rows, done
 
@@ -93,7 +94,7 @@ def committed(case):
     out = {}
     for b in json.load(open(path)):
         out[b["item"]] = {"state": b["state"], "slide": b["slide_m"], "max_tilt_deg": b["max_tilt_deg"],
-                          "resting_on": b["resting_on"]}
+                          "lift": b["lift_m"], "resting_on": b["resting_on"]}
     return out
 
 

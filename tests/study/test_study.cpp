@@ -326,6 +326,50 @@ bool near_colour(const Image& img, int x, int y, RGB c) {
 
 }  // namespace
 
+// "fallen" (has_fallen): off its feet at some time, whatever it ends as. The cases are the outcomes
+// studies produce: lying, tipped and back upright, and an upper cabinet that came 0.70 m down off the
+// lower one and leans on the desk at 55 deg (configuration 3, the 200-run study), which "overturned"
+// misses; and both thresholds from either side.
+TEST_CASE("damage states: fallen counts an item off its feet, whatever it ends as", "[study]") {
+  struct Case {
+    const char* state;
+    double max_tilt_deg, lift;
+    bool fallen, overturned;
+  };
+  const std::vector<Case> cases{{"standing", 2.0, 0.0, false, false},      {"overturned", 91.0, 0.0, true, true},
+                                {"fell", 70.0, 0.0, true, false},          {"resting_on_item", 55.2, -0.703, true, false},
+                                {"tilted", 59.9, -0.049, false, false},    {"fell", 60.1, 0.0, true, false},
+                                {"fell", 3.0, -0.051, true, false}};
+  StudySpec s;
+  s.intensity.levels = {1.0};
+  s.realisations = int(cases.size());
+  std::vector<RunResult> results;
+  long fallen = 0, overturned = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    BodyOutcome b = body("cabinet", 0.0, cases[i].max_tilt_deg);
+    b.state = cases[i].state, b.lift = cases[i].lift;
+    CHECK(in_damage_state(s.outcomes, b, "fallen") == cases[i].fallen);
+    CHECK(in_damage_state(s.outcomes, b, "overturned") == cases[i].overturned);
+    fallen += cases[i].fallen, overturned += cases[i].overturned;
+    RunResult x;
+    x.run = x.realisation = long(i);
+    x.status = "completed";
+    x.bodies.push_back(b);
+    results.push_back(x);
+  }
+  const StudyReport rep = study_report(s, results);
+  const auto count = [&](const char* state) {
+    const auto row = std::find_if(rep.probabilities.begin(), rep.probabilities.end(),
+                                  [&](const ProbabilityRow& p) { return p.body == "cabinet" && p.state == state; });
+    REQUIRE(row != rep.probabilities.end());
+    CHECK(row->estimate.trials == long(cases.size()));
+    return row->estimate.successes;
+  };
+  CHECK(count("fallen") == fallen);
+  CHECK(fallen == 5);
+  CHECK(count("overturned") == overturned);
+}
+
 TEST_CASE("study figures: fragility fits with observed fractions, tilts against intensity, slide histograms",
           "[study][figures]") {
   const StudySpec s = figure_study();

@@ -277,10 +277,10 @@ class FinalStates : public RunObserver {
       const double up = (a == it.body ? fz_sum : -fz_sum) / settle_steps_;
       if (up > most_up) most_up = up, st.resting_on = model.body(other).name;
     }
-    if (st.tilt_deg > 60) st.state = "overturned";
+    if (st.tilt_deg > overturned_tilt_deg) st.state = "overturned";
     else if (!st.resting_on.empty() && (st.tilt_deg > 5 || st.lift > 0.03)) st.state = "resting_on_item";
     else if (st.tilt_deg > 5) st.state = "tilted";
-    else if (st.max_tilt_deg > 60 || st.lift < -0.05) st.state = "fell";
+    else if (has_fallen(st.max_tilt_deg, st.lift)) st.state = "fell";
     else if (st.slide > 0.01) st.state = "slid";
     else st.state = "standing";
     return st;

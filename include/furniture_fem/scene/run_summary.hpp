@@ -81,6 +81,16 @@ struct EnergyVerdict {
   std::string text;           // one sentence: "closes: ..." or "does not close: ..."
 };
 
+// The thresholds of an item's final state (ItemFinalState, scene/observers.hpp) and of a study's damage
+// state "fallen" (study/report.hpp): one definition for both.
+inline constexpr double overturned_tilt_deg = 60;  // lying: its vertical axis tilted past this
+inline constexpr double fell_drop_m = 0.05;         // came down: its lowest node this far below its start
+// Off its feet at some time in the run: tipped past overturned_tilt_deg, or came down more than
+// fell_drop_m (off the item it stood on), whatever it rests on at the end.
+inline bool has_fallen(double max_tilt_deg, double lift) {
+  return max_tilt_deg > overturned_tilt_deg || lift < -fell_drop_m;
+}
+
 struct ItemFinalState {
   std::string name;
   std::string state;          // standing, slid, tilted, fell, overturned, resting_on_item, diverged

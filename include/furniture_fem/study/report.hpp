@@ -8,7 +8,9 @@
 //
 // Damage states of a body, from its outcome in a completed run: "slid" (final slide above
 // outcomes.slide_threshold), "tilted" (largest tilt during the run above outcomes.tilt_threshold_deg),
-// "overturned" (final state overturned). Runs that diverged or failed are not outcomes: they are
+// "overturned" (final state overturned), "fallen" (off its feet at some time: tipped past 60 deg or came
+// down more than 5 cm, has_fallen in scene/run_summary.hpp; an upper cabinet that fell off the lower one
+// counts whether it ends lying, upright or leaning on the desk). Runs that diverged or failed are not outcomes: they are
 // counted apart (`excluded`) and never enter a probability.
 #include <nlohmann/json.hpp>
 
@@ -20,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "../scene/run_summary.hpp"
 #include "outcomes.hpp"
 #include "spec.hpp"
 #include "statistics.hpp"
@@ -30,7 +33,7 @@
 
 namespace furniture_fem {
 
-inline constexpr std::array<const char*, 3> damage_states{"slid", "tilted", "overturned"};
+inline constexpr std::array<const char*, 4> damage_states{"slid", "tilted", "overturned", "fallen"};
 inline constexpr std::array<const char*, 6> continuous_outcomes{"slide_m", "max_tilt_deg", "lift_m",
                                                                 "floor_force_peak_N", "wall_force_peak_N",
                                                                 "item_force_peak_N"};
@@ -38,6 +41,7 @@ inline constexpr std::array<const char*, 6> continuous_outcomes{"slide_m", "max_
 inline bool in_damage_state(const OutcomeSpec& o, const BodyOutcome& b, std::string_view state) {
   if (state == "slid") return b.slide > o.slide_threshold;
   if (state == "tilted") return b.max_tilt_deg > o.tilt_threshold_deg;
+  if (state == "fallen") return has_fallen(b.max_tilt_deg, b.lift);
   return b.state == "overturned";
 }
 inline double continuous_outcome(const BodyOutcome& b, std::string_view name) {
