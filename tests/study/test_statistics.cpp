@@ -227,6 +227,11 @@ TEST_CASE("fragility fit: degenerate data are flagged with the reason, never NaN
   expect_flagged({{0.2, 10, 8}, {0.3, 10, 5}, {0.4, 10, 2}}, "do not rise with im");
   // Separated the wrong way round (all fail low, none high): the slope runs off to -infinity.
   expect_flagged({{0.2, 10, 10}, {0.4, 10, 0}}, "do not rise with im");
+  // One failure at an inner level and none elsewhere (configuration 3's desk tilted past 10 deg at
+  // `full`, 1 of 120 runs): the likelihood is flattest at slope 0, where the median is infinite.
+  // Newton stopped at slope 0.0023 (beta 427), a median of e^1018, and called it identifiable.
+  expect_flagged({{0.25, 20, 0}, {0.5, 20, 0}, {0.75, 20, 1}, {1.0, 20, 0}, {1.25, 20, 0}, {1.5, 20, 0}},
+                 "the median lies beyond any level");
   // The bootstrap of such data forms no interval and says so.
   const FragilityInterval none = bootstrap_fragility({{0.2, 10, 0}, {0.4, 10, 10}}, 50, 7);
   CHECK(none.not_identifiable == 50);

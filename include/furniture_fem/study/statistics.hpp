@@ -297,6 +297,13 @@ inline LognormalFragility fit_lognormal_fragility(const std::vector<FragilityLev
     fit.message = "the failure fractions do not rise with im: the best probit slope is not positive, no lognormal fragility fits";
     return fit;
   }
+  // A slope that converged to nearly zero: the curve is flat at the overall failure fraction and its
+  // median overflows (failures scattered over levels without rising).
+  if (const double theta = std::exp(-a / b); !std::isfinite(theta) || !std::isfinite(1.0 / b)) {
+    fit.message = "the failure fractions barely rise with im (probit slope " + detail::value_text(b) +
+                  "): the median lies beyond any level, no lognormal fragility fits";
+    return fit;
+  }
   fit.identifiable = true;
   fit.beta = 1.0 / b;
   fit.theta = std::exp(-a / b);
