@@ -36,6 +36,7 @@
 #include "detail/body_system.hpp"
 #include "detail/finite.hpp"
 #include "detail/parallel.hpp"
+#include "detail/rigid_affine.hpp"
 #include "detail/rigid_pair_terms.hpp"
 #include "detail/rotation.hpp"
 #include "detail/static_path.hpp"
@@ -67,6 +68,11 @@ struct SimulationOptions {
   // step"). 0: the predictor's contacts for the whole step (a face arriving at 5 m/s then enters the
   // floor unopposed for a step and its spring gives back energy it never took).
   int contact_iterations = 4;
+  // A rigid body (set_rigid) stepped on its fields: its nodes' translational fields are affine in their
+  // material arms, so the step's sums come from the body's mass moments and its nodes are placed in one
+  // pass per solve (docs/core/theory.md, "Rigid bodies on their fields"). The same scheme as node by
+  // node up to rounding. A body with a point inertia, a nodal load or a spring stays node by node.
+  bool rigid_fields = true;
 };
 
 // What a contact model sees: the current state of the structure, all in the table frame.
@@ -178,15 +184,22 @@ class Simulation {
   void set_table_acceleration(std::function<Vec3(double)> a) { table_acc_ = std::move(a); }
   // A nodal load (3 forces, 3 moments), scaled by load_scale(t) in dynamics and by the load factor in
   // statics.
-  void set_nodal_load(int node, const Vec6& load) { nodal_load_.segment<6>(6 * check_node(node)) = load; }
+  void set_nodal_load(int node, const Vec6& load) {
+    nodal_load_.segment<6>(6 * check_node(node)) = load;
+    nodes_set_from_outside(node);
+  }
   void set_load_scale(std::function<double(double)> s) { load_scale_ = std::move(s); }
-  void set_velocity(int node, const Vec6& v) { v_.segment<6>(6 * check_node(node)) = v; }
+  void set_velocity(int node, const Vec6& v) {
+    v_.segment<6>(6 * check_node(node)) = v;
+    nodes_set_from_outside(node);
+  }
   // Rigid-body velocity field (v0 + w x (x - c)) for all nodes of a body.
   void set_body_velocity(int body, const Vec3& v0, const Vec3& w, const Vec3& c) {
     for (int n : model_.body(body).nodes) {
       v_.segment<3>(6 * n) = v0 + w.cross(x_[n] - c);
       v_.segment<3>(6 * n + 3) = w;
     }
+    if (!model_.body(body).nodes.empty()) nodes_set_from_outside(model_.body(body).nodes.front());
   }
   Contact& contact() { return contact_; }
   const Contact& contact_model() const { return contact_; }
@@ -212,6 +225,9 @@ class Simulation {
     if constexpr (requires { contact_.set_rigid(model_, body, rigid); }) contact_.set_rigid(model_, body, rigid);
   }
   bool is_rigid(int body) const { return systems_.at(body).rigid; }
+  // Whether a rigid body is stepped on its fields (SimulationOptions::rigid_fields; decided at the
+  // first step: a body with a point inertia, a nodal load or a spring is stepped node by node).
+  bool rigid_on_fields(int body) const { return fields_.at(body).on; }
 
   // A grounded spring on one DOF (0-2 translations, 3-5 rotations): force k (target - u). The target
   // is scaled like the loads (load factor in statics, load_scale(t) in dynamics), so a stiff spring
@@ -237,6 +253,7 @@ class Simulation {
     x_[check_node(node)] = x;
     u_[node] = x - model_.node(node).X;
     R_[node] = R;
+    nodes_set_from_outside(node);
   }
   void update_internal_forces() {
     evaluate_elements(false);
@@ -410,6 +427,8 @@ class Simulation {
                                                   "transfer_state (core/checkpoint.hpp)");
     transfer_state_of(*this, r);
     refactorise_loaded_matrices();
+    for (int b = 0; b < model_.num_bodies(); ++b)
+      if (fields_[b].on) RigidFields::set_arms(*this, b);
   }
   const SimulationOptions& options() const { return opt_; }
   const StepTimings& timings() const { return timings_; }
@@ -509,7 +528,7 @@ class Simulation {
     resolve_changed_contacts(std::span<const int>(&b, 1));
     if (s.solve_failed) return;
     if (opt_.check_finite) {
-      s.not_finite = s.not_finite || !detail::nodes_finite(Du_, systems_[b].nodes);
+      s.not_finite = s.not_finite || !increment_finite(b);
       if (s.not_finite) return;
     }
     commit_body(b, s);
@@ -715,6 +734,8 @@ class Simulation {
     local_index_.assign(nn, -1);
     systems_.resize(model_.num_bodies());
     sums_.assign(model_.num_bodies(), {});
+    fields_.assign(model_.num_bodies(), {});
+    rigid_arms_.assign(model_.num_bodies(), {});
     contact_iterated_.assign(model_.num_bodies(), 0);
     solvers_.resize(model_.num_bodies());
     for (int b = 0; b < model_.num_bodies(); ++b) {
@@ -751,6 +772,7 @@ class Simulation {
     for (int i = 0; i < a_.size(); ++i) a_[i] = is_fixed(i) ? 0.0 : fnet0_[i] / mass_[i];
     for (auto& bs : systems_)
       if (bs.rigid) RigidBody::initial_acceleration(*this, bs);
+    for (int b = 0; b < model_.num_bodies(); ++b) RigidFields::begin(*this, b);
     ledger_.initial_total = energy().total();
   }
 
@@ -776,7 +798,7 @@ class Simulation {
        s.nodal_load_, s.fgrav_, s.contact_delta_);
     ar(s.predictor_shift_, s.pair_predictor_shift_, s.pair_active_, s.contact_iterated_, s.groups_, s.group_pairs_,
        s.group_of_);
-    ar(s.frames_, s.d_, s.fl_, s.committed_, s.trial_, s.ledger_, s.timings_);
+    ar(s.frames_, s.d_, s.fl_, s.committed_, s.trial_, s.ledger_, s.timings_, s.fields_);
     for (auto& bs : s.systems_) {
       // The matrix's values in its fixed pattern: as factorised, unless assembled for the next refresh.
       const std::size_t nnz = static_cast<std::size_t>(bs.K.nonZeros());
@@ -968,7 +990,7 @@ class Simulation {
     if (opt_.check_finite) {
       for (int m : members) {
         BodyStepSums& s = sums_[m];
-        s.not_finite = s.not_finite || !detail::nodes_finite(Du_, systems_[m].nodes);
+        s.not_finite = s.not_finite || !increment_finite(m);
         if (s.not_finite) return;
       }
     }
@@ -1193,6 +1215,7 @@ class Simulation {
   // of its squared norm and of the squared force scale.
   void residual_body(const detail::BodySystem& bs, const Eigen::VectorXd& fext1, double& num, double& den) {
     const double am = coef_.alpha_m, af = coef_.alpha_f, c = opt_.mass_damping;
+    if (const int b = static_cast<int>(&bs - systems_.data()); fields_[b].on) return RigidFields::residual(*this, b, num, den);
     // A node's six DOFs at once (each value by the same operations in the same order as DOF by DOF,
     // so the same bits; the sums below stay in DOF order).
     for (size_t k = 0; k < bs.nodes.size(); ++k) {
@@ -1224,6 +1247,12 @@ class Simulation {
   void predict_body(int b, const Loads& loads) {
     auto& bs = systems_[b];
     const double dt = opt_.dt;
+    if (fields_[b].refit) RigidFields::refit(*this, b);
+    if (fields_[b].on) {
+      RigidFields::predict(*this, b, loads);
+      contact_iterated_[b] = 0;
+      return;
+    }
     for (int n : bs.nodes) {
       const int i = 6 * n;
       u0_[n] = u_[n];
@@ -1243,6 +1272,7 @@ class Simulation {
   void kinematics_body(int b) {
     const double dt = opt_.dt;
     auto& bs = systems_[b];
+    if (fields_[b].on) return RigidFields::kinematics(*this, b);
     // Every node of a rigid body turns by the same increment: one exponential for all of them.
     const bool same_turn = bs.rigid && !bs.nodes.empty();
     const Mat3 turn = same_turn ? detail::rotation_exp(Du_.segment<3>(6 * bs.nodes.front() + 3)) : Mat3::Identity();
@@ -1300,6 +1330,7 @@ class Simulation {
   void commit_body(int b, BodyStepSums& s) {
     auto& bs = systems_[b];
     const StepWork applied = step_work();
+    if (fields_[b].on) return RigidFields::commit(*this, b, s);
     for (int n : bs.nodes) {
       const int i = 6 * n;
       const auto du = Du_.segment<6>(i);
@@ -1785,6 +1816,11 @@ class Simulation {
     };
     static ReducedSystem reduced_system(const Simulation& sim, const detail::BodySystem& bs) {
       const double mf = sim.coef_.mass_factor(sim.opt_.dt, sim.opt_.mass_damping);
+      if (const auto& F = sim.fields_[&bs - sim.systems_.data()]; F.on) {
+        Eigen::Matrix<double, 6, 6> A = detail::rigid_mass_matrix(F.mm, F.Q, mf);
+        if (!sim.static_) add_contact_terms(sim, bs, F.c, A);
+        return {A, F.R, F.c};
+      }
       const auto& mass = sim.mass_;
       const auto& r_nodal = sim.r_;
       // Nodes not moved since start_step: their mass centre is rigid_c0, to the bit.
@@ -1817,6 +1853,14 @@ class Simulation {
       bs.rigid_dc += dq.template head<3>();
       bs.rigid_Q = detail::rotation_exp(dq.template tail<3>()) * bs.rigid_Q;
       const Vec3 rot = detail::rotation_log(bs.rigid_Q);
+      if (auto& F = sim.fields_[&bs - sim.systems_.data()]; F.on) {
+        // d_n = dc + (Q_step - I) r_n with r_n = Q_start rho_n the arm at the step's start.
+        F.du = {bs.rigid_dc, (bs.rigid_Q - Mat3::Identity()) * F.Q_start};
+        F.dtheta = rot;
+        F.c = F.c_start + bs.rigid_dc;
+        F.Q = bs.rigid_Q * F.Q_start;
+        return;
+      }
       for (int n : bs.nodes) {
         const Vec3 x0 = sim.model_.node(n).X + sim.u0_[n];
         sim.Du_.template segment<3>(6 * n) = bs.rigid_c0 + bs.rigid_dc + bs.rigid_Q * (x0 - bs.rigid_c0) - x0;
@@ -1824,6 +1868,276 @@ class Simulation {
       }
     }
   };
+
+  // A rigid body stepped on its fields (SimulationOptions::rigid_fields, detail/rigid_affine.hpp): the
+  // nodal scheme of RigidBody with every translational field affine in the material arm rho_n and every
+  // rotational one the same at every node, so the residual, the 6 x 6 system and the step's works come
+  // from the body's mass moments and the nodes with contact forces. The nodes are placed (x_, u_, R_,
+  // v_, a_ and the increment Du_, which the contact's end-of-step work reads) in one pass per solve, and
+  // their velocities (v_, vn_, v_contact_) in one pass at the predictor, where the contact reads them.
+  // Its nodes' u0_, R0_, an_, fext0_ and fext1_ are not kept; fc0_ and fnet0_ hold the contact forces
+  // alone (the body's uniform load is g0). Du_ is zero at the predictor only in the fields (not read).
+  struct RigidFields {
+    using Fields = detail::RigidFieldState;
+    struct Arms {  // the material positions and masses, as detail::RigidMassMoments::of reads them
+      const Model& model;
+      const Vec3& operator[](int n) const { return model.node(n).X; }
+    };
+    struct Masses {
+      const Eigen::VectorXd& mass;
+      double operator[](int n) const { return mass[6 * n]; }
+    };
+    struct Rotary {
+      const Eigen::VectorXd& mass;
+      Vec3 operator[](int n) const { return mass.template segment<3>(6 * n + 3); }
+    };
+
+    // Whether the body can go on its fields: rigid, free of point inertias, nodal loads and springs,
+    // and its nodes placed and moving as one rigid body (fitted, then checked node by node).
+    static bool eligible(const Simulation& sim, int b) {
+      const auto& bs = sim.systems_[b];
+      if (!sim.opt_.rigid_fields || !bs.rigid || bs.nodes.empty() || sim.static_) return false;
+      for (int n : bs.nodes)
+        if (sim.rotary_index_[n] >= 0 || !sim.nodal_load_.template segment<6>(6 * n).isZero(0.0)) return false;
+      for (const auto& sp : sim.springs_)
+        if (sim.model_.node(sp.node).body == b) return false;
+      return true;
+    }
+    // A node's material arm, kept per body in its nodes' order (rigid_arms_).
+    static const Vec3& arm(const Simulation& sim, int n) {
+      return sim.rigid_arms_[sim.model_.node(n).body][sim.local_index_[n]];
+    }
+    static void set_arms(Simulation& sim, int b) {
+      const auto& bs = sim.systems_[b];
+      auto& arms = sim.rigid_arms_[b];
+      arms.resize(bs.nodes.size());
+      for (size_t k = 0; k < bs.nodes.size(); ++k) arms[k] = sim.model_.node(bs.nodes[k]).X - sim.fields_[b].mm.centre;
+    }
+    // a + B r written out: the passes over the nodes are these and stores (Eigen's product was a call).
+    static Vec3 affine(const Vec3& a, const Mat3& B, const Vec3& r) {
+      return Vec3(a[0] + B(0, 0) * r[0] + B(0, 1) * r[1] + B(0, 2) * r[2],
+                  a[1] + B(1, 0) * r[0] + B(1, 1) * r[1] + B(1, 2) * r[2],
+                  a[2] + B(2, 0) * r[0] + B(2, 1) * r[1] + B(2, 2) * r[2]);
+    }
+    static Vec3 at(const detail::AffineField& f, const Vec3& r) { return affine(f.a, f.B, r); }
+    static bool nonzero6(const double* p) {
+      return (p[0] != 0) | (p[1] != 0) | (p[2] != 0) | (p[3] != 0) | (p[4] != 0) | (p[5] != 0);
+    }
+
+    // The fields through the nodes' state (at the start of a run, or after nodes were set from outside);
+    // false, and the body stays node by node, when the nodes are not one rigid body's.
+    static bool fit(Simulation& sim, int b, Fields& F) {
+      const auto& bs = sim.systems_[b];
+      const Arms X{sim.model_};
+      const Masses m{sim.mass_};
+      F.mm = detail::RigidMassMoments::of(bs.nodes, X, m, Rotary{sim.mass_});
+      set_arms(sim, b);
+      const int n0 = bs.nodes.front();
+      F.Q = sim.R_[n0];
+      F.c = Vec3::Zero();
+      for (int n : bs.nodes) F.c += m[n] * sim.x_[n];
+      F.c /= F.mm.mass.w;
+      const auto trans = [&](const Eigen::VectorXd& v) {
+        return detail::fit_affine_field(bs.nodes, F.mm, [&](int n) -> Vec3 { return v.template segment<3>(6 * n); }, X, m);
+      };
+      F.f.v = trans(sim.v_);
+      F.f.a = trans(sim.a_);
+      F.f.w = sim.v_.template segment<3>(6 * n0 + 3);
+      F.f.alpha = sim.a_.template segment<3>(6 * n0 + 3);
+      // Rounding of the fit is ~1e-15 of the values; anything near 1e-9 is a motion that is not rigid.
+      const double size = std::sqrt(F.mm.mass.second.trace() / F.mm.mass.w) + 1.0;
+      double vmax = 1, amax = 1;
+      for (int n : bs.nodes) {
+        vmax = std::max(vmax, sim.v_.template segment<6>(6 * n).cwiseAbs().maxCoeff());
+        amax = std::max(amax, sim.a_.template segment<6>(6 * n).cwiseAbs().maxCoeff());
+      }
+      for (int n : bs.nodes) {
+        const Vec3& rho = arm(sim, n);
+        const int i = 6 * n;
+        if ((sim.x_[n] - (F.c + F.Q * rho)).norm() > 1e-9 * size || (sim.R_[n] - F.Q).norm() > 1e-9 ||
+            (sim.v_.template segment<3>(i) - F.f.v.at(rho)).norm() > 1e-9 * vmax ||
+            (sim.v_.template segment<3>(i + 3) - F.f.w).norm() > 1e-9 * vmax ||
+            (sim.a_.template segment<3>(i) - F.f.a.at(rho)).norm() > 1e-9 * amax ||
+            (sim.a_.template segment<3>(i + 3) - F.f.alpha).norm() > 1e-9 * amax)
+          return false;
+      }
+      return true;
+    }
+
+    // At the start of a run (start()): the fields from the nodes' state; the nodes' net forces become
+    // their contact forces alone (a rigid body has no internal force; its uniform load is g0).
+    static void begin(Simulation& sim, int b) {
+      Fields& F = sim.fields_[b];
+      F = {};
+      if (!eligible(sim, b) || !fit(sim, b, F)) return;
+      const Loads loads = sim.loads_at(sim.t_);
+      F.g0 = sim.opt_.gravity * loads.gravity_factor - loads.table_acc;
+      for (int n : sim.systems_[b].nodes)
+        sim.fnet0_.template segment<6>(6 * n) = sim.fc0_.template segment<6>(6 * n);
+      F.on = true;
+    }
+    // Nodes set from outside between steps: fitted again, or back to node by node (the nodal arrays
+    // the node-by-node step starts from: its external forces at t_n in fext0_ and fnet0_).
+    static void refit(Simulation& sim, int b) {
+      Fields& F = sim.fields_[b];
+      F.refit = false;
+      const Vec3 g0 = F.g0;
+      if (eligible(sim, b) && fit(sim, b, F)) return;
+      F.on = false;
+      for (int n : sim.systems_[b].nodes) {
+        const int i = 6 * n;
+        sim.fext0_.template segment<3>(i) = sim.mass_[i] * g0;
+        sim.fext0_.template segment<3>(i + 3).setZero();
+        sim.fnet0_.template segment<6>(i) = sim.fext0_.template segment<6>(i) + sim.fc0_.template segment<6>(i);
+      }
+    }
+
+    // The predictor (Du = 0): Newmark's rates on the fields; the nodes' velocity (the contact's
+    // linearisation reads it) and the velocity the contact is evaluated at, vn + dt an.
+    static void predict(Simulation& sim, int b, const Loads& loads) {
+      auto& bs = sim.systems_[b];
+      Fields& F = sim.fields_[b];
+      const double dt = sim.opt_.dt;
+      F.c_start = F.c;
+      F.Q_start = F.Q;
+      F.f.vn = F.f.v;
+      F.f.an = F.f.a;
+      F.f.wn = F.f.w;
+      F.f.alphan = F.f.alpha;
+      F.du = {};
+      F.dtheta.setZero();
+      rates(sim, F);
+      F.g1 = sim.opt_.gravity * loads.gravity_factor - loads.table_acc;
+      bs.rigid_c0 = F.c;
+      bs.rigid_dc.setZero();
+      bs.rigid_Q.setIdentity();
+      bs.rigid_at_start = true;
+      const detail::AffineField vc = F.f.vn + dt * F.f.an;
+      const Vec3 wc = F.f.wn + dt * F.f.alphan;
+      const auto& arms = sim.rigid_arms_[b];
+      double* v = sim.v_.data();
+      double* vn = sim.vn_.data();
+      double* vcon = sim.v_contact_.data();
+      for (size_t k = 0; k < bs.nodes.size(); ++k) {
+        const int i = 6 * bs.nodes[k];
+        const Vec3 vt = at(F.f.v, arms[k]), nt = at(F.f.vn, arms[k]), ct = at(vc, arms[k]);
+        for (int j = 0; j < 3; ++j) {
+          v[i + j] = vt[j];
+          v[i + 3 + j] = F.f.w[j];
+          vn[i + j] = nt[j];
+          vn[i + 3 + j] = F.f.wn[j];
+          vcon[i + j] = ct[j];
+          vcon[i + 3 + j] = wc[j];
+        }
+      }
+    }
+    // Newmark's acceleration and velocity from the increment (IntegratorCoefficients on the fields).
+    static void rates(const Simulation& sim, Fields& F) {
+      const double dt = sim.opt_.dt;
+      F.f.a = sim.coef_.acceleration(F.du, F.f.vn, F.f.an, dt);
+      F.f.v = sim.coef_.velocity(F.f.vn, F.f.an, F.f.a, dt);
+      F.f.alpha = sim.coef_.acceleration(F.dtheta, F.f.wn, F.f.alphan, dt);
+      F.f.w = sim.coef_.velocity(F.f.wn, F.f.alphan, F.f.alpha, dt);
+    }
+    // The increment's rates and the nodes placed on the body's motion.
+    static void kinematics(Simulation& sim, int b) {
+      auto& bs = sim.systems_[b];
+      Fields& F = sim.fields_[b];
+      rates(sim, F);
+      bs.rigid_at_start = false;
+      const Vec3 shift = F.c - F.mm.centre;  // u_n = (c - X_c) + (Q - I) rho_n: small u stays precise
+      const Mat3 turn = F.Q - Mat3::Identity();
+      const auto& arms = sim.rigid_arms_[b];
+      double* v = sim.v_.data();
+      double* a = sim.a_.data();
+      double* du = sim.Du_.data();
+      for (size_t k = 0; k < bs.nodes.size(); ++k) {
+        const int n = bs.nodes[k], i = 6 * n;
+        const Vec3& rho = arms[k];
+        sim.u_[n] = affine(shift, turn, rho);
+        sim.x_[n] = affine(F.c, F.Q, rho);
+        sim.R_[n] = F.Q;
+        const Vec3 vt = at(F.f.v, rho), at_ = at(F.f.a, rho), dt_ = at(F.du, rho);
+        for (int j = 0; j < 3; ++j) {
+          v[i + j] = vt[j];
+          v[i + 3 + j] = F.f.w[j];
+          a[i + j] = at_[j];
+          a[i + 3 + j] = F.f.alpha[j];
+          du[i + j] = dt_[j];
+          du[i + 3 + j] = F.dtheta[j];
+        }
+      }
+    }
+
+    // The nodes carrying forces besides their share of the uniform load: those with contact forces at
+    // either end of the step.
+    static std::vector<detail::RigidNodeExtra> loaded_nodes(const Simulation& sim, int b) {
+      const double af = sim.coef_.alpha_f;
+      std::vector<detail::RigidNodeExtra> out;
+      for (int n : sim.systems_[b].nodes) {
+        const int i = 6 * n;
+        if (!(nonzero6(sim.fc1_.data() + i) | nonzero6(sim.fnet0_.data() + i))) continue;
+        const auto fc1 = sim.fc1_.template segment<6>(i), f0 = sim.fnet0_.template segment<6>(i);
+        detail::RigidNodeExtra e;
+        e.rho = arm(sim, n);
+        e.m = sim.mass_[i];
+        e.J = sim.mass_.template segment<3>(i + 3);
+        e.s = (1 - af) * fc1 + af * f0;
+        e.l1.setZero();
+        e.fc1 = fc1;
+        out.push_back(e);
+      }
+      return out;
+    }
+    // The residual reduced to the body (kept for its 6 x 6 solve), its squared norm and force scale.
+    static void residual(Simulation& sim, int b, double& num, double& den) {
+      Fields& F = sim.fields_[b];
+      const auto extra = loaded_nodes(sim, b);
+      const auto r = detail::rigid_reduced_residual(F.mm, F.Q, F.f, sim.coef_.alpha_m, sim.coef_.alpha_f,
+                                                    sim.opt_.mass_damping, F.g1, F.g0, extra);
+      F.R = r.R;
+      num += r.num;
+      den += r.den;
+    }
+
+    // The step's works (the uniform load's and the damping's from the moments, the contact's at its
+    // nodes) and the contact forces the next step starts from.
+    static void commit(Simulation& sim, int b, BodyStepSums& s) {
+      auto& bs = sim.systems_[b];
+      Fields& F = sim.fields_[b];
+      const StepWork applied = sim.step_work();
+      const Vec3 g = sim.opt_.gravity;
+      const auto w = detail::rigid_step_work(F.mm, F.du, F.dtheta, F.f, g - F.g0, g - F.g1, sim.opt_.mass_damping);
+      s.external_work += w.external;
+      s.damping_work += w.damping;
+      for (int n : bs.nodes) {
+        const int i = 6 * n;
+        if (!(nonzero6(sim.fc0_.data() + i) | nonzero6(sim.fc1_.data() + i))) continue;
+        const auto fc0 = sim.fc0_.template segment<6>(i), fc1 = sim.fc1_.template segment<6>(i);
+        const auto du = sim.Du_.template segment<6>(i);
+        s.contact_work += 0.5 * du.dot(fc0 + fc1);
+        s.contact_work_applied +=
+            applied.of(applied.path(du, sim.vn_.template segment<6>(i), sim.v_.template segment<6>(i)), fc0, fc1);
+        sim.fc0_.template segment<6>(i) = fc1;
+        sim.fnet0_.template segment<6>(i) = fc1;
+      }
+      F.g0 = F.g1;
+      ++bs.steps_since_refresh;
+    }
+
+    static bool finite(const Fields& F) {
+      return F.du.a.allFinite() && F.du.B.allFinite() && F.dtheta.allFinite() && F.c.allFinite() && F.Q.allFinite();
+    }
+  };
+  bool increment_finite(int b) const {
+    return fields_[b].on ? RigidFields::finite(fields_[b]) : detail::nodes_finite(Du_, systems_[b].nodes);
+  }
+  // A node's state or load set from outside after the start: its body's fields are fitted again.
+  void nodes_set_from_outside(int node) {
+    if (!started_) return;
+    auto& F = fields_[model_.node(node).body];
+    if (F.on) F.refit = true;
+  }
 
   // Names the first node whose state is not finite, for the diagnosis of a diverged step.
   std::string non_finite_diagnosis() const {
@@ -1931,6 +2245,8 @@ class Simulation {
   std::vector<State> committed_, trial_;
   std::vector<int> local_index_;
   std::vector<detail::BodySystem> systems_;
+  std::vector<detail::RigidFieldState> fields_;  // per body: a rigid body stepped on its fields (RigidFields)
+  std::vector<std::vector<Vec3>> rigid_arms_;    // per body on its fields: its nodes' material arms
   std::vector<std::unique_ptr<LinearSolver>> solvers_;  // Eigen's solvers are not copyable
   EnergyLedger ledger_;
   StepTimings timings_;
