@@ -1920,6 +1920,13 @@ class Simulation {
                   a[2] + B(2, 0) * r[0] + B(2, 1) * r[1] + B(2, 2) * r[2]);
     }
     static Vec3 at(const detail::AffineField& f, const Vec3& r) { return affine(f.a, f.B, r); }
+    // A node's six values: its translational part, then its rotational part.
+    static void put(double* node, const Vec3& translation, const Vec3& rotation) {
+      for (int j = 0; j < 3; ++j) {
+        node[j] = translation[j];
+        node[3 + j] = rotation[j];
+      }
+    }
     static bool nonzero6(const double* p) {
       return (p[0] != 0) | (p[1] != 0) | (p[2] != 0) | (p[3] != 0) | (p[4] != 0) | (p[5] != 0);
     }
@@ -2020,15 +2027,9 @@ class Simulation {
       double* vcon = sim.v_contact_.data();
       for (size_t k = 0; k < bs.nodes.size(); ++k) {
         const int i = 6 * bs.nodes[k];
-        const Vec3 vt = at(F.f.v, arms[k]), nt = at(F.f.vn, arms[k]), ct = at(vc, arms[k]);
-        for (int j = 0; j < 3; ++j) {
-          v[i + j] = vt[j];
-          v[i + 3 + j] = F.f.w[j];
-          vn[i + j] = nt[j];
-          vn[i + 3 + j] = F.f.wn[j];
-          vcon[i + j] = ct[j];
-          vcon[i + 3 + j] = wc[j];
-        }
+        put(v + i, at(F.f.v, arms[k]), F.f.w);
+        put(vn + i, at(F.f.vn, arms[k]), F.f.wn);
+        put(vcon + i, at(vc, arms[k]), wc);
       }
     }
     // Newmark's acceleration and velocity from the increment (IntegratorCoefficients on the fields).
@@ -2057,15 +2058,9 @@ class Simulation {
         sim.u_[n] = affine(shift, turn, rho);
         sim.x_[n] = affine(F.c, F.Q, rho);
         sim.R_[n] = F.Q;
-        const Vec3 vt = at(F.f.v, rho), at_ = at(F.f.a, rho), dt_ = at(F.du, rho);
-        for (int j = 0; j < 3; ++j) {
-          v[i + j] = vt[j];
-          v[i + 3 + j] = F.f.w[j];
-          a[i + j] = at_[j];
-          a[i + 3 + j] = F.f.alpha[j];
-          du[i + j] = dt_[j];
-          du[i + 3 + j] = F.dtheta[j];
-        }
+        put(v + i, at(F.f.v, rho), F.f.w);
+        put(a + i, at(F.f.a, rho), F.f.alpha);
+        put(du + i, at(F.du, rho), F.dtheta);
       }
     }
 
