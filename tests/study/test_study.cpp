@@ -407,6 +407,30 @@ TEST_CASE("study figures: fragility fits with observed fractions, tilts against 
   const png_test::Png png = png_test::decode_file(dir + "/fragility.png");
   const RGB at{png.at(x, y, 0), png.at(x, y, 1), png.at(x, y, 2)};
   CHECK((at == palette_color(0) || near_colour(plot.render(detail::study_figure_width, two_panels), x, y, palette_color(0))));
+  // One legend, in the first panel: a colour per damage state, the same in every panel.
+  CHECK_FALSE(crate.legend.empty());
+  CHECK(layout.panels.at(1).legend.empty());
+  // Two variants on the same runs: the second's "slid" fit is dashed in the first's colour, and the
+  // legend gains the two line styles (six rows, against four for one variant).
+  StudySpec two = s;
+  two.variants = {StudyVariant{}, StudyVariant{}};
+  two.variants[0].name = "full", two.variants[1].name = "auto";
+  std::vector<RunResult> paired;
+  for (const RunResult& r : results)
+    for (int v : {0, 1}) {
+      RunResult x = r;
+      x.run = 2 * r.realisation + v, x.variant = v;
+      paired.push_back(x);
+    }
+  const StudyReport rep2 = study_report(two, paired);
+  const LinePlot plot2 = detail::fragility_plot(two, rep2);
+  const auto dashed_slid = std::count_if(plot2.series(0).begin(), plot2.series(0).end(), [](const Series& c) {
+    return c.dashed && c.color == palette_color(0) && c.x.size() == 121;
+  });
+  CHECK(dashed_slid == 1);
+  const PlotLayout layout2 = plot2.layout(detail::study_figure_width, two_panels);
+  CHECK(layout2.panels.at(0).legend.height() > layout.panels.at(0).legend.height());
+  CHECK(layout2.panels.at(1).legend.empty());
   StudyReport no_fits = rep;
   no_fits.fragility.clear();
   CHECK_FALSE(near_colour(detail::fragility_plot(s, no_fits).render(detail::study_figure_width, two_panels), x, y, palette_color(0)));

@@ -28,7 +28,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 #include <vector>
 
 #include "cgal_adapter.hpp"
@@ -37,6 +36,7 @@
 #include "../core/simulation.hpp"
 
 #define FURNITURE_FEM_CONTACT_INTERNAL
+#include "detail/pair_history.hpp"
 #include "detail/support_points.hpp"
 #undef FURNITURE_FEM_CONTACT_INTERNAL
 
@@ -271,7 +271,7 @@ class RoomContact {
       ContactState st = committed_pair_state(ip.ea, ip.eb);
       const auto nf = evaluate_segment_pair(law_, segment_pair(view, ip.ea, ip.eb), pair_params(view.model, ip.ea, ip.eb), st);
       if (pair_history_) {
-        if (nf.in_contact) pair_trial_[key(ip.ea, ip.eb)] = st;
+        if (nf.in_contact) pair_trial_.set(key(ip.ea, ip.eb), st);
         else pair_trial_.erase(key(ip.ea, ip.eb));
       }
       add_pair_force(std::min(A.body, B.body), std::max(A.body, B.body), reported_pair_force(A.body, B.body, nf));
@@ -756,7 +756,7 @@ class RoomContact {
       if (segments_apart_beyond(view.x[A.n1], view.x[A.n2], view.x[B.n1], view.x[B.n2], L)) continue;
       ContactState st = committed_pair_state(ea, eb);
       const auto nf = evaluate_segment_pair(law_, segment_pair(view, ea, eb), pair_params(model, ea, eb), st);
-      if (pair_history_ && nf.in_contact) pair_trial_[key(ea, eb)] = st;
+      if (pair_history_ && nf.in_contact) pair_trial_.set(key(ea, eb), st);
       if (!nf.in_contact) continue;
       if (implicit && rigid_[A.body] && rigid_[B.body] && bodies_[A.body].implicit && bodies_[B.body].implicit) {
         const auto& c = nf.closest;
@@ -807,8 +807,8 @@ class RoomContact {
   // Only laws with a history (a tangential spring) keep per-pair state across steps.
   ContactState committed_pair_state(int ea, int eb) const {
     if (!pair_history_) return {};
-    const auto it = pair_state_.find(key(ea, eb));
-    return it != pair_state_.end() ? it->second : ContactState{};
+    const ContactState* st = pair_state_.find(key(ea, eb));
+    return st ? *st : ContactState{};
   }
   // The force a pair puts on the lower-numbered of its two bodies.
   static Vec3 reported_pair_force(int body_a, int body_b, const SegmentPairForces& nf) {
@@ -853,7 +853,7 @@ class RoomContact {
   std::vector<double> share_;     // per node and plane: how many nodes the contact stands for
   std::vector<char> caster_;
   std::vector<ContactState> node_state_, node_trial_;
-  std::unordered_map<long long, ContactState> pair_state_, pair_trial_;
+  detail::PairHistory pair_state_, pair_trial_;  // per element pair in contact
   BroadPhase broad_phase_;
   std::vector<std::pair<int, int>> candidates_;
   std::vector<PairForce> pair_forces_;

@@ -4,8 +4,9 @@
 //
 //   write_study_figures(study, report, results, folder)
 //     fragility.png               per body: the fitted lognormal P(state | im) of each damage state and
-//                                 variant (lines), the observed fraction per level (dots) with its
-//                                 Wilson 95 % interval (bars); states without a fit show their dots only
+//                                 variant (lines: a colour per state, the first variant solid, the others
+//                                 dashed), the observed fraction per level (dots) with its Wilson 95 %
+//                                 interval (bars); states without a fit show their dots only; one legend
 //     max_tilt_vs_intensity.png   every completed run's largest tilt against its level, per body and
 //                                 variant, with the tilt threshold
 //     outcome_histograms.png      per body: the final slide of the completed runs (all levels pooled),
@@ -101,6 +102,8 @@ inline Series fragility_curve(const LognormalFragility& fit, double x_end, RGB c
 
 // One (variant, state) cell of a body's panel: its curve if identifiable, its observed fractions
 // always (a state never or always reached has no fit, and the researcher still wants to see that).
+// A state has one colour in every panel and variant; the first variant's fits are solid, the others'
+// dashed (with 8 series of 8 colours each panel needed its own legend, and it covered the data).
 inline void add_fragility_cell(LinePlot& plot, int panel, const StudySpec& s, const StudyReport& rep, const std::string& body,
                                int variant, int state, double offset) {
   const std::string vname = s.variant_name(variant), sname = damage_states[std::size_t(state)];
@@ -109,23 +112,46 @@ inline void add_fragility_cell(LinePlot& plot, int panel, const StudySpec& s, co
     if (r.variant == vname && r.body == body && r.state == sname)
       x.push_back(r.level + offset), p.push_back(r.estimate.p), lo.push_back(r.estimate.lo), hi.push_back(r.estimate.hi);
   if (x.empty()) return;
-  const RGB colour = palette_color(std::size_t(variant) * damage_states.size() + std::size_t(state));
+  const RGB colour = palette_color(std::size_t(state));
   const auto fit = std::find_if(rep.fragility.begin(), rep.fragility.end(), [&](const FragilityRow& f) {
     return f.variant == vname && f.body == body && f.state == sname && f.fit.identifiable;
   });
-  const std::string label = with_variant(s, sname, vname);
-  if (fit != rep.fragility.end()) plot.add(fragility_curve(fit->fit, intensity_axis_end(s), colour, label), panel);
+  if (fit != rep.fragility.end()) {
+    Series curve = fragility_curve(fit->fit, intensity_axis_end(s), colour, "");
+    curve.dashed = variant > 0;
+    plot.add(std::move(curve), panel);
+  }
   plot.add(bars(x, lo, hi, colour), panel);
-  plot.add(dots(x, p, colour, fit != rep.fragility.end() ? "" : label + " (no fit)"), panel);
+  plot.add(dots(x, p, colour, ""), panel);
 }
 
-// fragility.png: one panel per body; the legend top left, where rising curves leave room.
+// The fragility figure's one legend, in the first panel: a line and dot per damage state in its
+// colour, and (several variants) each variant's line style and where its dots sit at a level.
+inline void add_fragility_legend(LinePlot& plot, const StudySpec& s) {
+  for (std::size_t st = 0; st < damage_states.size(); ++st) {
+    Series key;
+    key.color = palette_color(st), key.label = damage_states[st], key.marker = 4.5;
+    plot.add(std::move(key), 0);
+  }
+  if (s.num_variants() < 2) return;
+  for (int v = 0; v < s.num_variants(); ++v) {
+    Series key;
+    const int n = s.num_variants();
+    const std::string dots = v == 0 ? "left" : v == n - 1 ? "right" : "place " + std::to_string(v + 1) + " from left";
+    key.color = colors::black, key.label = s.variant_name(v) + ": fit, dots " + dots, key.dashed = v > 0;
+    plot.add(std::move(key), 0);
+  }
+}
+
+// fragility.png: one panel per body; the legend top left of the first, where rising curves leave room.
+// A state with dots and no line has no fit (never or always reached, or not identifiable).
 inline LinePlot fragility_plot(const StudySpec& s, const StudyReport& rep) {
   std::vector<std::string> bodies;
   for (const ProbabilityRow& r : rep.probabilities) add_unique(bodies, r.body);
-  LinePlot plot("Fragility: fits (lines), observed (dots, 95 %)");
+  LinePlot plot("Fragility: lognormal fits (lines), observed fractions (dots, 95 %)");
   plot.panels(std::max<int>(1, int(bodies.size()))).xlabel(intensity_axis_label(s)).xlim(0, intensity_axis_end(s));
   plot.style().legend = LegendPos::top_left;
+  add_fragility_legend(plot, s);
   const std::size_t cells = std::size_t(s.num_variants()) * damage_states.size();
   for (int b = 0; b < int(bodies.size()); ++b) {
     plot.ylabel(bodies[std::size_t(b)] + ": probability", b).ylim(-0.03, 1.03, b);
