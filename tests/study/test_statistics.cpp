@@ -232,6 +232,28 @@ TEST_CASE("fragility fit: degenerate data are flagged with the reason, never NaN
   // Newton stopped at slope 0.0023 (beta 427), a median of e^1018, and called it identifiable.
   expect_flagged({{0.25, 20, 0}, {0.5, 20, 0}, {0.75, 20, 1}, {1.0, 20, 0}, {1.25, 20, 0}, {1.5, 20, 0}},
                  "the median lies beyond any level");
+  // The same with a seventh level (0.625, the study of 2026-11-29): Newton stopped at slope 0.036
+  // (beta 28) with a finite median of 3e29, and called it identifiable. The likelihood ratio against
+  // one fraction at every level is 0 (an independent Nelder-Mead fit, statistics_reference-style: the
+  // maximum is the flat model's, -5.7833); so is that of one failure at the highest level only (3.63).
+  expect_flagged({{0.25, 20, 0}, {0.5, 20, 0}, {0.75, 20, 1}, {1.0, 20, 0}, {1.25, 20, 0}, {1.5, 20, 0}, {0.625, 20, 0}},
+                 "below chi-square(1)'s 95 % point");
+  // Fractions that do rise, weakly (0, 0, 1, 2, 3, 4 of 20 from 0.25 to 1.5): likelihood ratio 10.43
+  // by the same independent fit, well above 3.84: a fit, theta 2.59 and beta 0.70 there.
+  const LognormalFragility weak =
+      fit_lognormal_fragility({{0.25, 20, 0}, {0.5, 20, 0}, {0.75, 20, 1}, {1.0, 20, 2}, {1.25, 20, 3}, {1.5, 20, 4}});
+  INFO(weak.message);
+  REQUIRE(weak.identifiable);
+  CHECK(weak.theta == Approx(std::exp(1.3623 / 1.4335)).epsilon(2e-3));
+  CHECK(weak.beta == Approx(1 / 1.4335).epsilon(2e-3));
+  // Its resamples are fitted without the test: data whose rise is not significant (1 and 3 of 10,
+  // likelihood ratio 1.30) get no fit, but most of their resamples do, and an interval.
+  const FragilityInterval weak_boot = bootstrap_fragility({{0.2, 10, 1}, {0.4, 10, 3}}, 200, 5);
+  CHECK_FALSE(weak_boot.fit.identifiable);
+  CHECK_THAT(weak_boot.fit.message, Contains("below chi-square(1)'s 95 % point"));
+  CHECK(weak_boot.not_identifiable < 100);
+  CHECK(std::isfinite(weak_boot.theta_lo));
+  CHECK(std::isfinite(weak_boot.theta_hi));
   // The bootstrap of such data forms no interval and says so.
   const FragilityInterval none = bootstrap_fragility({{0.2, 10, 0}, {0.4, 10, 10}}, 50, 7);
   CHECK(none.not_identifiable == 50);
@@ -249,7 +271,7 @@ TEST_CASE("fragility fit: bad inputs name their values", "[statistics]") {
   CHECK_THROWS_WITH(fit_lognormal_fragility({{0.1, 0, 0}}), Contains("trials = 0"));
   CHECK_THROWS_WITH(fit_lognormal_fragility({{0.1, 10, 11}}), Contains("failures = 11, trials = 10"));
   CHECK_THROWS_WITH(fit_lognormal_fragility({{0.1, 10, -1}}), Contains("failures = -1"));
-  const std::vector<FragilityLevel> ok = {{0.2, 10, 2}, {0.4, 10, 6}};
+  const std::vector<FragilityLevel> ok = {{0.2, 20, 2}, {0.4, 20, 12}};
   CHECK_THROWS_WITH(bootstrap_fragility(ok, 0, 1), Contains("resamples = 0"));
   CHECK_THROWS_WITH(bootstrap_fragility(ok, 10, 1, 1.2), Contains("confidence = 1.2"));
   CHECK_THROWS_WITH(fragility_probability(fit_lognormal_fragility(ok), -1.0), Contains("im = -1"));
