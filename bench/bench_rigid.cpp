@@ -3,6 +3,8 @@
 // when MuJoCo was found at configure time, the same six boxes in MuJoCo (the program of
 // shared/anchors/mujoco_room, its model compiled in), side by side in one run. Each iteration steps
 // both once through the 10 s; counters: seconds of each (stepping only, one thread) and their ratio.
+// Two variants: the items meeting by their members' element pairs (the scene's contact.rigid_pairs,
+// "members") and by their hulls ("hulls", docs/contact/contact.md, "Rigid pairs by their hulls").
 //   ./build/bench/bench_rigid --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // The record is read through the scene file (../shared/ground_motions beside the repository); the
 // benchmark is skipped with a message when it is absent. Final slides and tilts go to stderr.
@@ -146,7 +148,8 @@ void print_final_states(const char* who, const RunResult& r) {
 }
 
 void BM_RigidConfiguration3AgainstMuJoCo(benchmark::State& state) {
-  const SceneSpec spec = parse_scene(scene_file);
+  SceneSpec spec = parse_scene(scene_file);
+  spec.contact.rigid_pairs = state.range(0) ? RigidPairContact::hulls : RigidPairContact::members;
   const std::string record_path = spec.resolve(spec.ground_motion.file_x);
   if (!std::filesystem::exists(record_path)) {
     state.SkipWithError(("the JMA-Kobe NS record is not there: " + record_path).c_str());
@@ -160,7 +163,7 @@ void BM_RigidConfiguration3AgainstMuJoCo(benchmark::State& state) {
   }
 #endif
   double ours_total = 0, mujoco_total = 0;
-  static bool printed = false;  // the final states once, not at every repetition
+  static bool printed[2] = {false, false};  // the final states once per variant, not at every repetition
   for (auto _ : state) {
     const RunResult ours = run_furniture_fem(spec);
     ours_total += ours.seconds;
@@ -169,12 +172,14 @@ void BM_RigidConfiguration3AgainstMuJoCo(benchmark::State& state) {
     const RunResult mujoco = run_mujoco(record, spec.ground_motion.window_start, spec.duration);
     mujoco_total += mujoco.seconds;
 #endif
-    if (!printed) {
-      print_final_states("furniture_fem, every item rigid", ours);
+    if (!printed[state.range(0)]) {
+      print_final_states(state.range(0) ? "furniture_fem, every item rigid, pairs by hulls"
+                                        : "furniture_fem, every item rigid, pairs by members",
+                         ours);
 #ifdef FFEM_HAVE_MUJOCO
       print_final_states("MuJoCo 2.2.2, six boxes", mujoco);
 #endif
-      printed = true;
+      printed[state.range(0)] = true;
     }
   }
   const double n = static_cast<double>(state.iterations());
@@ -186,6 +191,12 @@ void BM_RigidConfiguration3AgainstMuJoCo(benchmark::State& state) {
   state.SetLabel("MuJoCo not found at configure time: furniture_fem alone");
 #endif
 }
-BENCHMARK(BM_RigidConfiguration3AgainstMuJoCo)->Unit(benchmark::kSecond)->UseManualTime()->Iterations(1);
+BENCHMARK(BM_RigidConfiguration3AgainstMuJoCo)
+    ->ArgName("hulls")
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kSecond)
+    ->UseManualTime()
+    ->Iterations(1);
 
 }  // namespace

@@ -11,6 +11,9 @@
 //    distance of the closest points and L the mean member width; candidate pairs come from the CGAL
 //    broad phase (contact.hpp), re-run whenever a node has moved more than half the boxes' margin
 //  - element against rigid triangle-mesh obstacles.
+// With set_rigid_pair_hulls, two rigid bodies meet by their hulls instead of their members: the
+// incident face of one clipped to the reference face of the other, a few points per pair
+// (detail/hull_pair.hpp; docs/contact/contact.md, "Rigid pairs by their hulls").
 // A rigid body (set_rigid, which Simulation::set_rigid calls) is tested against the planes with the
 // vertices of its nodes' convex hull only, its support points (a box's eight corners), not its mesh:
 // the vertices of the hull face turned towards a plane each stand for an equal share of the nodes on
@@ -36,6 +39,7 @@
 #include "../core/simulation.hpp"
 
 #define FURNITURE_FEM_CONTACT_INTERNAL
+#include "detail/hull_pair.hpp"
 #include "detail/pair_history.hpp"
 #include "detail/support_points.hpp"
 #undef FURNITURE_FEM_CONTACT_INTERNAL
@@ -140,6 +144,7 @@ class RoomContact {
     set_centre_line_geometry(model, body);
     if (surface_on_) rebuild_surface_points(model);
     select_plane_nodes();
+    update_hull_pairs(model);
   }
   // Floor and wall contact at the members' surfaces (true) or their centre lines (false, the paper's),
   // for every body: a rigid body's support points become the hull of cubes of half a member's width
@@ -151,8 +156,22 @@ class RoomContact {
     for (int b = 0; b < static_cast<int>(bodies_.size()); ++b) set_centre_line_geometry(model, b);
     rebuild_surface_points(model);
     select_plane_nodes();
+    update_hull_pairs(model);
   }
   bool surface() const { return surface_on_; }
+  // Item-item contact of two rigid bodies by their hulls (true) or by their members' element pairs
+  // (false, the default): a few points where one hull's face meets the other's, instead of hundreds of
+  // element pairs. A pair whose hulls overlap at rest (a chair under a desk: the desk's hull holds
+  // its knee space) and a flat body (no hull) keep their element pairs. Before the first step.
+  void set_rigid_pair_hulls(const Model& model, bool on = true) {
+    hulls_on_ = on;
+    update_hull_pairs(model);
+  }
+  bool rigid_pair_hulls() const { return hulls_on_; }
+  // Whether bodies a and b meet by their hulls (set_rigid_pair_hulls).
+  bool hull_pair(int a, int b) const {
+    return !hull_pair_.empty() && hull_pair_[static_cast<std::size_t>(a) * bodies_.size() + b];
+  }
   // The support points at the members' surfaces (all bodies, in body order).
   const std::vector<detail::SurfacePoint>& surface_points() const { return surface_points_; }
   // The nodes tested against the floor and walls (all but rigid bodies' inner nodes), ascending.
@@ -177,10 +196,14 @@ class RoomContact {
     pair_trial_.clear();
     pair_tangents_.clear();
     implicit_pairs_.clear();
+    hull_contacts_.clear();
     active_ = 0;
     plane_contacts(view, f);
     timings_.planes += seconds_since(t_planes);
-    if (item_contact && model.num_bodies() > 1) element_contacts(view, f);
+    if (item_contact && model.num_bodies() > 1) {
+      element_contacts(view, f);
+      if (hulls_on_) hull_contacts(view, f);
+    }
     if (!obstacles_.empty()) {
       const auto t_obstacles = clock::now();
       obstacle_contacts(view, f);
@@ -276,6 +299,18 @@ class RoomContact {
       }
       add_pair_force(std::min(A.body, B.body), std::max(A.body, B.body), reported_pair_force(A.body, B.body, nf));
     }
+    for (auto& hc : hull_contacts_) {
+      if (!hc.implicit) continue;
+      add_pair_force(std::min(hc.body_a, hc.body_b), std::max(hc.body_a, hc.body_b), -hc.reported);
+      ContactState st = committed_hull_state(hc);
+      const ContactForce cf = hull_contact_force(view, hc, st);
+      if (pair_history_ && hc.key >= 0) {
+        if (cf.in_contact) pair_trial_.set(hc.key, st);
+        else pair_trial_.erase(hc.key);
+      }
+      hc.reported = hc.body_a < hc.body_b ? cf.on_a : Vec3(-cf.on_a);
+      add_pair_force(std::min(hc.body_a, hc.body_b), std::max(hc.body_a, hc.body_b), hc.reported);
+    }
   }
 
   void commit() {
@@ -295,7 +330,8 @@ class RoomContact {
     requires std::is_same_v<std::remove_const_t<Self>, RoomContact>
   friend void transfer_state(Self& c, Archive& ar) {
     ar(c.node_state_, c.node_trial_, c.pair_state_, c.pair_trial_, c.candidates_, c.x_broad_);
-    ar(c.pair_forces_, c.tangents_, c.pair_tangents_, c.implicit_pairs_, c.plane_applied_, c.plane_status_, c.share_);
+    ar(c.pair_forces_, c.tangents_, c.pair_tangents_, c.implicit_pairs_, c.hull_contacts_, c.plane_applied_,
+       c.plane_status_, c.share_);
     ar(c.point_state_, c.point_trial_, c.point_status_, c.point_share_, c.group_near_, c.group_state_live_);
     ar(c.steps_, c.broad_runs_, c.active_);
   }
@@ -749,6 +785,7 @@ class RoomContact {
     for (const auto& [ea, eb] : candidates_) {
       const auto& A = model.elements()[ea];
       const auto& B = model.elements()[eb];
+      if (hulls_on_ && hull_pair(A.body, B.body)) continue;  // hull_contacts
       // Most candidates are apart (the broad phase's boxes are `margin` larger): their boxes show it
       // before the closest points, the history lookup and the law. Apart, evaluate_segment_pair
       // gives no force and no history, and the loop goes on, as here.
@@ -840,6 +877,190 @@ class RoomContact {
     }
   }
 
+  // ---- Rigid pairs by their hulls (set_rigid_pair_hulls) ----
+
+  // One contact point of two hulls: the force acts on body_a (the incident face's) at the point and
+  // -F on body_b (the reference face's); each side holds it at an offset from one of its nodes, turned
+  // with the node, so that the point moves with its body. gap0: the gap at the evaluation that found
+  // it; the gap at another state adds the points' relative displacement along the normal.
+  struct HullContact {
+    static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp (no padding: 8-byte fields)
+    int body_a = -1, body_b = -1, node_a = -1, node_b = -1;
+    Vec3 arm_a0 = Vec3::Zero(), arm_b0 = Vec3::Zero();  // in the nodes' initial frames
+    Vec3 normal0 = Vec3::UnitZ();                        // out of body_b, in node_b's initial frame
+    double gap0 = 0, L = 0, share = 1;
+    long long key = -1;  // its history's key (hull_key)
+    long long implicit = 0;
+    Vec3 reported = Vec3::Zero();  // its share of pair_forces_
+  };
+
+  // A body's hull for item-item contact: its surface points' hull at surfaces, its nodes' at centre lines.
+  const detail::SupportGeometry& hull_of(int body) const {
+    return surface_at(body) ? surface_groups_[body].front().geometry : support_[body];
+  }
+  // A hull point's node and its offset from the node in the node's initial frame.
+  std::pair<int, Vec3> hull_point(int body, int i) const {
+    if (!surface_at(body)) return {i, Vec3::Zero()};
+    return {surface_points_[i].node, surface_points_[i].arm0};
+  }
+  // The contact distance of two hulls' surfaces (at centre lines: the members' half widths) and the
+  // law's L (the mean member width, as for element pairs; each body's widest member).
+  double hull_distance(int a, int b) const {
+    return surface_at(a) ? 0.0 : hull_half_width_[a] + hull_half_width_[b];
+  }
+  double hull_L(int a, int b) const { return hull_half_width_[a] + hull_half_width_[b]; }
+
+  // Which body pairs meet by their hulls: both rigid with a hull (not flat), and their hulls apart at
+  // the initial positions (the model's: the same on a resumed run).
+  void update_hull_pairs(const Model& model) {
+    const std::size_t nb = bodies_.size();
+    hull_pair_.assign(hulls_on_ ? nb * nb : 0, 0);
+    hull_half_width_.assign(nb, 0.0);
+    if (!hulls_on_) return;
+    const auto points = std::max<long long>(model.num_nodes(), static_cast<long long>(surface_points_.size()));
+    if (points >= hull_id_limit || static_cast<long long>(nb) >= hull_id_limit)
+      throw ModelError("RoomContact: rigid pairs by their hulls name their points below 2^20; this model has " +
+                       std::to_string(points) + " points");
+    for (std::size_t b = 0; b < nb; ++b)
+      for (int n : model.body(static_cast<int>(b)).nodes)
+        if (std::isfinite(half_width_[n])) hull_half_width_[b] = std::max(hull_half_width_[b], half_width_[n]);
+    const auto has_hull = [&](int b) {
+      if (!rigid_[b]) return false;
+      if (surface_at(b)) return !surface_groups_[b].empty() && !surface_groups_[b].front().geometry.faces.empty();
+      return !support_[b].faces.empty();
+    };
+    const auto rest = [&](int body) {
+      return [this, &model, body](int i) -> Vec3 {
+        const auto [n, arm] = hull_point(body, i);
+        return model.node(n).X + arm;
+      };
+    };
+    for (int a = 0; a < static_cast<int>(nb); ++a)
+      for (int b = a + 1; b < static_cast<int>(nb); ++b) {
+        if (!has_hull(a) || !has_hull(b)) continue;
+        // Overlapping hulls at rest (deeper than the contact distance allows): nested, element pairs.
+        const bool nested =
+            detail::hull_separation(hull_of(a), rest(a), hull_of(b), rest(b), hull_distance(a, b)) < -nested_overlap;
+        hull_pair_[a * nb + b] = hull_pair_[b * nb + a] = !nested;
+      }
+  }
+  static constexpr double nested_overlap = 0.005;  // m: hulls overlapping more at rest are nested
+
+  // The key of a hull contact point's history, from its kind and the hull points (or bodies) that name
+  // it, each below 2^20 (update_hull_pairs checks): above every element pair's key.
+  static constexpr long long hull_id_limit = 1LL << 20;
+  static long long hull_key(detail::HullPointKind kind, long long p, long long q, long long r) {
+    return (1LL << 62) | (static_cast<long long>(kind) << 60) | (p << 40) | (q << 20) | r;
+  }
+  static long long hull_key(const detail::HullContactPoint& pt, int inc, int ref) {
+    using K = detail::HullPointKind;
+    switch (pt.kind) {
+      case K::corner: return hull_key(pt.kind, pt.id, 0, ref);
+      case K::entering:
+      case K::leaving: return hull_key(pt.kind, pt.id, pt.id2, 0);
+      case K::reference: return hull_key(pt.kind, pt.id, 0, inc);
+    }
+    return -1;
+  }
+  ContactState committed_hull_state(const HullContact& hc) const {
+    if (!pair_history_ || hc.key < 0) return {};
+    const ContactState* st = pair_state_.find(hc.key);
+    return st ? *st : ContactState{};
+  }
+
+  // Every hull pair's contact points at the view's state: forces into f, their tangents (both bodies
+  // implicit) for the rigid groups.
+  void hull_contacts(const ContactView& view, Eigen::VectorXd& f) {
+    if (!view.rotations)
+      throw ModelError("RoomContact: rigid pairs by their hulls need the nodes' rotations in the ContactView");
+    const std::size_t nb = bodies_.size();
+    const auto now = [&](int body) {
+      return [this, &view, body](int i) -> Vec3 {
+        const auto [n, arm] = hull_point(body, i);
+        return view.x[n] + (*view.rotations)[n] * arm;
+      };
+    };
+    detail::HullPairContact hc;
+    for (int a = 0; a < static_cast<int>(nb); ++a)
+      for (int b = a + 1; b < static_cast<int>(nb); ++b) {
+        if (!hull_pair_[a * nb + b]) continue;
+        if (!detail::hull_pair_contact(hull_of(a), now(a), hull_of(b), now(b), hull_distance(a, b), 0.0, hull_bias, hc))
+          continue;
+        const int inc = hc.reference_on_a ? b : a, ref = hc.reference_on_a ? a : b;
+        const int ref_node = hull_point(ref, hc.reference->frame[0]).first;
+        const int inc_face_node = hull_point(inc, hc.incident->frame[0]).first;
+        for (const auto& pt : hc.points) {
+          HullContact c;
+          c.body_a = inc, c.body_b = ref;
+          // A corner of the incident face is a hull point of its body; any other point is held by the
+          // incident face's first node.
+          const bool corner = pt.kind == detail::HullPointKind::corner;
+          const Vec3 x_inc = corner ? now(inc)(pt.id) : pt.x;
+          c.node_a = corner ? hull_point(inc, pt.id).first : inc_face_node;
+          c.node_b = ref_node;
+          const Mat3& Ra = (*view.rotations)[c.node_a];
+          const Mat3& Rb = (*view.rotations)[c.node_b];
+          c.arm_a0 = Ra.transpose() * (x_inc - view.x[c.node_a]);
+          c.arm_b0 = Rb.transpose() * (x_inc - view.x[c.node_b]);
+          c.normal0 = Rb.transpose() * hc.normal;
+          c.gap0 = pt.gap;
+          c.L = hull_L(a, b);
+          c.share = hc.incident->share;
+          c.key = hull_key(pt, inc, ref);
+          c.implicit = implicit && bodies_[a].implicit && bodies_[b].implicit;
+          ContactState st = committed_hull_state(c);
+          const ContactForce cf = hull_contact_force(view, c, st);
+          if (pair_history_ && c.key >= 0 && cf.in_contact) pair_trial_.set(c.key, st);
+          if (!cf.in_contact) continue;
+          apply_hull_force(view, c, cf.on_a, f);
+          c.reported = c.body_a < c.body_b ? cf.on_a : Vec3(-cf.on_a);
+          add_pair_force(std::min(a, b), std::max(a, b), c.reported);
+          ++active_;
+          if (c.implicit) {
+            const Vec3 arm_a = Ra * c.arm_a0, arm_b = Rb * c.arm_b0;
+            PairContactTangent t{c.body_a, c.body_b, c.node_a, c.node_a, c.node_b, c.node_b, 0, 0, x_inc, cf.K, cf.C,
+                                 view.x[c.node_a] + arm_a - (view.x[c.node_b] + arm_b),
+                                 point_velocity(view, c.node_a, arm_a) - point_velocity(view, c.node_b, arm_b),
+                                 c.arm_a0, c.arm_b0};
+            pair_tangents_.push_back(t);
+          }
+          hull_contacts_.push_back(c);
+        }
+      }
+  }
+  static constexpr double hull_bias = 1e-3;  // m: a's faces win ties up to this (hull_pair_contact)
+
+  static Vec3 point_velocity(const ContactView& view, int n, const Vec3& arm) {
+    return Vec3(view.v.template segment<3>(6 * n)) + Vec3(view.v.template segment<3>(6 * n + 3)).cross(arm);
+  }
+  // A hull contact's force on body_a at the view's state, from the history in `state`.
+  ContactForce hull_contact_force(const ContactView& view, const HullContact& c, ContactState& state) const {
+    const Mat3& Ra = (*view.rotations)[c.node_a];
+    const Mat3& Rb = (*view.rotations)[c.node_b];
+    const Vec3 arm_a = Ra * c.arm_a0, arm_b = Rb * c.arm_b0;
+    const Vec3 pa = view.x[c.node_a] + arm_a, pb = view.x[c.node_b] + arm_b;
+    const Vec3 n = Rb * c.normal0;
+    const double gap = c.gap0 + n.dot(pa - pb);
+    if (!(gap <= 0)) {
+      state = ContactState{};
+      return {};
+    }
+    const NodeOnPlane node{pa, point_velocity(view, c.node_a, arm_a), c.L, view.dt, Vec3::Zero(),
+                           point_velocity(view, c.node_b, arm_b)};
+    ContactParams prm = ContactParams::pair(bodies_[c.body_a].item, bodies_[c.body_b].item);
+    if (c.share != 1.0) prm = scaled_penalty(prm, c.share);
+    return detail::node_force(law_, node, gap + c.L, n, prm, state);
+  }
+  // F on body_a at the contact point, -F on body_b: each at its node with the moment that puts it there.
+  static void apply_hull_force(const ContactView& view, const HullContact& c, const Vec3& F, Eigen::VectorXd& f) {
+    const Mat3& Ra = (*view.rotations)[c.node_a];
+    const Mat3& Rb = (*view.rotations)[c.node_b];
+    f.template segment<3>(6 * c.node_a) += F;
+    f.template segment<3>(6 * c.node_a + 3) += (Ra * c.arm_a0).cross(F);
+    f.template segment<3>(6 * c.node_b) -= F;
+    f.template segment<3>(6 * c.node_b + 3) -= (Rb * c.arm_b0).cross(F);
+  }
+
   static long long key(int a, int b) { return (static_cast<long long>(a) << 32) | static_cast<unsigned>(b); }
 
   Law law_;
@@ -865,6 +1086,10 @@ class RoomContact {
     Vec3 reported;  // its share of pair_forces_ at the evaluation
   };
   std::vector<ImplicitPair> implicit_pairs_;  // the pairs behind pair_tangents_
+  bool hulls_on_ = false;                     // set_rigid_pair_hulls
+  std::vector<char> hull_pair_;               // per body pair: meets by its hulls
+  std::vector<double> hull_half_width_;       // per body: its hull nodes' widest half width
+  std::vector<HullContact> hull_contacts_;    // of the last add_forces
   std::vector<char> rigid_;                   // per body: set_rigid
   std::vector<std::pair<int, Vec6>> plane_applied_;  // the floor and wall forces (and moments) of the last evaluation
   // Contact at the members' surfaces (set_surface): per body its groups of points (a rigid body's hull,

@@ -132,6 +132,10 @@ struct PairContactTangent {
   Vec3 point = Vec3::Zero();
   Mat3 K = Mat3::Zero(), C = Mat3::Zero();
   Vec3 x = Vec3::Zero(), v = Vec3::Zero();  // relative position and velocity at the evaluation
+  // A point off its segment (two rigid bodies' hulls, a0 == a1 and b0 == b1): its offset from the node
+  // in the node's initial frame; it turns with the node (zero for element pairs).
+  Vec3 arm_a0 = Vec3::Zero(), arm_b0 = Vec3::Zero();
+  bool has_arms() const { return !arm_a0.isZero(0) || !arm_b0.isZero(0); }
 };
 
 // A contact policy whose item-item pairs offer their linearisation (pair_tangents(), of its last
@@ -951,10 +955,15 @@ class Simulation {
 
   // The relative position and velocity of a pair's contact points (a's minus b's) now.
   Vec3 pair_relative_position(const PairContactTangent& p) const {
+    if (p.has_arms()) return x_[p.a0] + R_[p.a0] * p.arm_a0 - (x_[p.b0] + R_[p.b0] * p.arm_b0);
     return (1 - p.s) * x_[p.a0] + p.s * x_[p.a1] - ((1 - p.t) * x_[p.b0] + p.t * x_[p.b1]);
   }
   Vec3 pair_relative_velocity(const PairContactTangent& p) const {
     const auto v = [&](int n) { return Vec3(v_.segment<3>(6 * n)); };
+    if (p.has_arms()) {
+      const auto w = [&](int n) { return Vec3(v_.segment<3>(6 * n + 3)); };
+      return v(p.a0) + w(p.a0).cross(R_[p.a0] * p.arm_a0) - (v(p.b0) + w(p.b0).cross(R_[p.b0] * p.arm_b0));
+    }
     return (1 - p.s) * v(p.a0) + p.s * v(p.a1) - ((1 - p.t) * v(p.b0) + p.t * v(p.b1));
   }
   // A pair's linearised force now, less the force at its evaluation.

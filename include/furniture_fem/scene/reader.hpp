@@ -304,7 +304,8 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
 
   if (r.has("contact")) {
     const ObjectReader c = r.object("contact");
-    c.allow_only({"law", "implicit", "velocity_regularisation", "stick_length", "plane_contact_at", "floor", "wall", "item"});
+    c.allow_only({"law", "implicit", "velocity_regularisation", "stick_length", "plane_contact_at", "rigid_pairs",
+                   "floor", "wall", "item"});
     s.contact.law = c.enumeration("law", detail::law_names, s.contact.law, "contact law");
     const SceneLawInfo& law = scene_law(s.contact.law);
     if (c.has("implicit"))
@@ -319,6 +320,8 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
     detail::read_range(c, "stick_length", 0.0, 0.01, false);
     s.contact.plane_contact_at = c.enumeration("plane_contact_at", detail::plane_contact_at_names,
                                                s.contact.plane_contact_at, "plane contact place");
+    s.contact.rigid_pairs = c.enumeration("rigid_pairs", detail::rigid_pair_contact_names, s.contact.rigid_pairs,
+                                          "rigid pair contact");
     if (c.has("floor")) s.contact.floor = detail::parse_contact_overrides(c.object("floor"), s.contact.law, true);
     if (c.has("wall")) s.contact.wall = detail::parse_contact_overrides(c.object("wall"), s.contact.law, false);
     if (c.has("item")) s.contact.item = detail::parse_contact_overrides(c.object("item"), s.contact.law, false);

@@ -486,6 +486,7 @@ struct SceneSimulation {
     motion = scene_table_motion(spec, &motion_scale);
     RoomContact<Law> contact(*model, scene_body_contacts(spec, *model, items), scene_planes(spec));
     contact.set_surface(*model, spec.contact.plane_contact_at == PlaneContactAt::surfaces);
+    contact.set_rigid_pair_hulls(*model, spec.contact.rigid_pairs == RigidPairContact::hulls);
     for (std::size_t i = 0; i < spec.obstacles.size(); ++i)
       contact.add_obstacle(detail::scene_obstacle(spec, i));
     switch (spec.integrator.scheme) {

@@ -149,6 +149,11 @@ enum class ImplicitContact { none, rigid, all };
 // about its outer edge; docs/contact/contact.md, "At the surface"). Flexible items: centre lines.
 enum class PlaneContactAt { centre_lines, surfaces };
 
+// How two rigid items meet: by their members' element pairs (as flexible items do), or by their hulls
+// (one hull's face clipped to the other's: a few points instead of hundreds of element pairs;
+// docs/contact/contact.md, "Rigid pairs by their hulls").
+enum class RigidPairContact { members, hulls };
+
 struct ContactSpec {
   ContactLawKind law;  // the list's first law, "paper", unless set
   // Unset: the law's default (`stiff`: all), else rigid; read it through implicit_contact(ContactSpec).
@@ -162,6 +167,7 @@ struct ContactSpec {
   // Where floor and wall contact act on an item's members: at their outer surfaces (the paper's code
   // and its reproductions, configuration(k), use the centre lines, half a member's width inside).
   PlaneContactAt plane_contact_at = PlaneContactAt::surfaces;
+  RigidPairContact rigid_pairs = RigidPairContact::members;
   ContactOverrides floor, wall, item;
 };
 

@@ -39,6 +39,8 @@ inline constexpr EnumNames<ImplicitContact, 3> implicit_contact_names{
     {{ImplicitContact::none, "none"}, {ImplicitContact::rigid, "rigid"}, {ImplicitContact::all, "all"}}};
 inline constexpr EnumNames<PlaneContactAt, 2> plane_contact_at_names{
     {{PlaneContactAt::centre_lines, "centre_lines"}, {PlaneContactAt::surfaces, "surfaces"}}};
+inline constexpr EnumNames<RigidPairContact, 2> rigid_pair_contact_names{
+    {{RigidPairContact::members, "members"}, {RigidPairContact::hulls, "hulls"}}};
 inline constexpr EnumNames<IntegratorKind, 3> integrator_names{
     {{IntegratorKind::paper_newmark, "paper_newmark"},
      {IntegratorKind::average_acceleration, "average_acceleration"},
