@@ -201,7 +201,7 @@ class RoomContact {
     plane_contacts(view, f);
     timings_.planes += seconds_since(t_planes);
     if (item_contact && model.num_bodies() > 1) {
-      element_contacts(view, f);
+      if (!hulls_on_ || any_element_pairs_) element_contacts(view, f);
       if (hulls_on_) hull_contacts(view, f);
     }
     if (!obstacles_.empty()) {
@@ -943,6 +943,13 @@ class RoomContact {
             detail::hull_separation(hull_of(a), rest(a), hull_of(b), rest(b), hull_distance(a, b)) < -nested_overlap;
         hull_pair_[a * nb + b] = hull_pair_[b * nb + a] = !nested;
       }
+    hull_body_.assign(nb, 0);
+    for (std::size_t a = 0; a < nb; ++a)
+      for (std::size_t b = 0; b < nb; ++b) hull_body_[a] = hull_body_[a] || hull_pair_[a * nb + b];
+    // Element pairs are left only if some pair of bodies does not meet by its hulls.
+    any_element_pairs_ = false;
+    for (std::size_t a = 0; a < nb; ++a)
+      for (std::size_t b = a + 1; b < nb; ++b) any_element_pairs_ = any_element_pairs_ || !hull_pair_[a * nb + b];
   }
   static constexpr double nested_overlap = 0.005;  // m: hulls overlapping more at rest are nested
 
@@ -974,17 +981,32 @@ class RoomContact {
     if (!view.rotations)
       throw ModelError("RoomContact: rigid pairs by their hulls need the nodes' rotations in the ContactView");
     const std::size_t nb = bodies_.size();
-    const auto now = [&](int body) {
-      return [this, &view, body](int i) -> Vec3 {
-        const auto [n, arm] = hull_point(body, i);
-        return view.x[n] + (*view.rotations)[n] * arm;
-      };
+    // Each hull body's vertices placed once (the separating axes read each many times), and its box.
+    hull_box_lo_.assign(nb, Vec3::Constant(std::numeric_limits<double>::infinity()));
+    hull_box_hi_.assign(nb, Vec3::Constant(-std::numeric_limits<double>::infinity()));
+    for (std::size_t b = 0; b < nb; ++b) {
+      if (!hull_body_[b]) continue;
+      for (int v : hull_of(static_cast<int>(b)).vertices) {
+        const auto [n, arm] = hull_point(static_cast<int>(b), v);
+        const Vec3 x = view.x[n] + (*view.rotations)[n] * arm;
+        if (static_cast<std::size_t>(v) >= hull_x_.size()) hull_x_.resize(static_cast<std::size_t>(v) + 1);
+        hull_x_[v] = x;
+        hull_box_lo_[b] = hull_box_lo_[b].cwiseMin(x);
+        hull_box_hi_[b] = hull_box_hi_[b].cwiseMax(x);
+      }
+    }
+    const auto now = [&](int) {
+      return [this](int i) -> const Vec3& { return hull_x_[i]; };
     };
     detail::HullPairContact hc;
     for (int a = 0; a < static_cast<int>(nb); ++a)
       for (int b = a + 1; b < static_cast<int>(nb); ++b) {
         if (!hull_pair_[a * nb + b]) continue;
-        if (!detail::hull_pair_contact(hull_of(a), now(a), hull_of(b), now(b), hull_distance(a, b), 0.0, hull_bias, hc))
+        // Boxes apart by more than the contact distance: no face can touch.
+        const double d = hull_distance(a, b);
+        if (((hull_box_lo_[a] - hull_box_hi_[b]).array() > d).any() || ((hull_box_lo_[b] - hull_box_hi_[a]).array() > d).any())
+          continue;
+        if (!detail::hull_pair_contact(hull_of(a), now(a), hull_of(b), now(b), d, 0.0, hull_bias, hc))
           continue;
         const int inc = hc.reference_on_a ? b : a, ref = hc.reference_on_a ? a : b;
         const int ref_node = hull_point(ref, hc.reference->frame[0]).first;
@@ -995,7 +1017,7 @@ class RoomContact {
           // A corner of the incident face is a hull point of its body; any other point is held by the
           // incident face's first node.
           const bool corner = pt.kind == detail::HullPointKind::corner;
-          const Vec3 x_inc = corner ? now(inc)(pt.id) : pt.x;
+          const Vec3 x_inc = pt.x;
           c.node_a = corner ? hull_point(inc, pt.id).first : inc_face_node;
           c.node_b = ref_node;
           const Mat3& Ra = (*view.rotations)[c.node_a];
@@ -1088,6 +1110,10 @@ class RoomContact {
   std::vector<ImplicitPair> implicit_pairs_;  // the pairs behind pair_tangents_
   bool hulls_on_ = false;                     // set_rigid_pair_hulls
   std::vector<char> hull_pair_;               // per body pair: meets by its hulls
+  bool any_element_pairs_ = true;             // some body pair meets by its members
+  std::vector<char> hull_body_;               // per body: in a hull pair
+  std::vector<Vec3> hull_x_;                  // hull vertices' positions at the evaluation, by point
+  std::vector<Vec3> hull_box_lo_, hull_box_hi_;  // per hull body: its vertices' box
   std::vector<double> hull_half_width_;       // per body: its hull nodes' widest half width
   std::vector<HullContact> hull_contacts_;    // of the last add_forces
   std::vector<char> rigid_;                   // per body: set_rigid
