@@ -906,7 +906,7 @@ class RoomContact {
   // The contact distance of two hulls' surfaces (at centre lines: the members' half widths) and the
   // law's L (the mean member width, as for element pairs; each body's widest member).
   double hull_distance(int a, int b) const {
-    return surface_at(a) ? 0.0 : hull_half_width_[a] + hull_half_width_[b];
+    return (surface_at(a) ? 0.0 : hull_half_width_[a]) + (surface_at(b) ? 0.0 : hull_half_width_[b]);
   }
   double hull_L(int a, int b) const { return hull_half_width_[a] + hull_half_width_[b]; }
 
