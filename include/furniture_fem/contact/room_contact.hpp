@@ -995,9 +995,7 @@ class RoomContact {
         hull_box_hi_[b] = hull_box_hi_[b].cwiseMax(x);
       }
     }
-    const auto now = [&](int) {
-      return [this](int i) -> const Vec3& { return hull_x_[i]; };
-    };
+    const auto at = [this](int i) -> const Vec3& { return hull_x_[i]; };
     detail::HullPairContact hc;
     for (int a = 0; a < static_cast<int>(nb); ++a)
       for (int b = a + 1; b < static_cast<int>(nb); ++b) {
@@ -1006,7 +1004,7 @@ class RoomContact {
         const double d = hull_distance(a, b);
         if (((hull_box_lo_[a] - hull_box_hi_[b]).array() > d).any() || ((hull_box_lo_[b] - hull_box_hi_[a]).array() > d).any())
           continue;
-        if (!detail::hull_pair_contact(hull_of(a), now(a), hull_of(b), now(b), d, 0.0, hull_bias, hc))
+        if (!detail::hull_pair_contact(hull_of(a), at, hull_of(b), at, d, 0.0, hull_bias, hc))
           continue;
         const int inc = hc.reference_on_a ? b : a, ref = hc.reference_on_a ? a : b;
         const int ref_node = hull_point(ref, hc.reference->frame[0]).first;
@@ -1017,7 +1015,7 @@ class RoomContact {
           // A corner of the incident face is a hull point of its body; any other point is held by the
           // incident face's first node.
           const bool corner = pt.kind == detail::HullPointKind::corner;
-          const Vec3 x_inc = pt.x;
+          const Vec3& x_inc = pt.x;
           c.node_a = corner ? hull_point(inc, pt.id).first : inc_face_node;
           c.node_b = ref_node;
           const Mat3& Ra = (*view.rotations)[c.node_a];
