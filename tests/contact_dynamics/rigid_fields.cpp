@@ -24,7 +24,7 @@ struct FieldsScene {
   std::unique_ptr<Sim> sim;
 
   FieldsScene(const std::vector<BoxSpec>& specs, const std::function<ContactParams(const Box&)>& params,
-              bool fields, double mass_damping = 0, bool floor = true) {
+              bool fields, double mass_damping = 0, bool floor = true, bool hulls = false) {
     const int sec = model->add_section(tube()), mat = model->add_material(elastic_steel());
     for (size_t i = 0; i < specs.size(); ++i)
       boxes.push_back(add_box(*model, "box" + std::to_string(i), sec, mat, specs[i]));
@@ -33,6 +33,7 @@ struct FieldsScene {
     std::vector<RigidPlane> planes;
     if (floor) planes.push_back(floor_plane());
     RoomContact<Law> contact(*model, bodies, planes, Law{});
+    if (hulls) contact.set_rigid_pair_hulls(*model);
     SimulationOptions o = options_dt(1e-3);
     o.rigid_fields = fields;
     o.mass_damping = mass_damping;
@@ -43,6 +44,7 @@ struct FieldsScene {
 
 struct Gap {
   double position = 0, velocity = 0, work = 0;  // largest differences; work relative to the ledger's scale
+  double rotation = 0, acceleration = 0;        // of the rotation matrices; of the accelerations (m/s^2)
 };
 
 // Both scenes stepped to t_end; the largest differences of every node's position and velocity and of
@@ -60,7 +62,10 @@ Gap run_both(Scene& a, Scene& b, double t_end, const std::function<Vec3(double)>
   Gap g;
   for (int n = 0; n < a.model->num_nodes(); ++n) {
     g.position = std::max(g.position, (a.sim->position(n) - b.sim->position(n)).norm());
+    g.position = std::max(g.position, (a.sim->displacement(n) - b.sim->displacement(n)).norm());
     g.velocity = std::max(g.velocity, (a.sim->velocity(n) - b.sim->velocity(n)).norm());
+    g.rotation = std::max(g.rotation, (a.sim->rotation(n) - b.sim->rotation(n)).norm());
+    g.acceleration = std::max(g.acceleration, (a.sim->acceleration(n) - b.sim->acceleration(n)).norm());
   }
   const EnergyLedger ea = a.sim->energy(), eb = b.sim->energy();
   const double scale = std::max({1.0, std::abs(eb.kinetic), std::abs(eb.external_work), std::abs(eb.contact_work)});
@@ -167,4 +172,65 @@ TEST_CASE("a rigid body with a nodal load goes node by node, also when the load 
   for (int n = 0; n < late.model->num_nodes(); ++n)
     gap = std::max(gap, (late.sim->position(n) - nodal.sim->position(n)).norm());
   CHECK(gap < 1e-9);
+}
+
+namespace {
+// Every node's state as the simulation's arrays give it.
+template <class Sim>
+NodeStates arrays_of(const Sim& sim) {
+  return {sim.positions(), sim.displacements(), sim.rotations(), sim.velocities(), sim.accelerations()};
+}
+bool same_bits(const NodeStates& a, const NodeStates& b) {
+  return a.x == b.x && a.u == b.u && a.R == b.R && a.v == b.v && a.a == b.a;
+}
+}  // namespace
+
+TEST_CASE("a rigid stack by its hulls: the nodes its step does not read are placed when read, as node by node",
+          "[contact_dynamics][rigid_fields]") {
+  // By their hulls the contact reads a few nodes of each box (RoomContact::nodes_read: its hull's
+  // vertices); a body on its fields places only those at every solve and the others when something
+  // reads them. Every node's state, read node by node or as arrays, is the node-by-node run's to
+  // rounding; reading every node after every step changes no bit of the run; and the state a step
+  // keeps of its start is, to the bit, the state read before it.
+  const std::vector<BoxSpec> stack{{0.6, 0.3, 0.3}, {0.3, 0.4, 0.3, Vec3(0, 0, 0.35)}};
+  for (const double mu : {0.3, 0.6})
+    for (const double amplitude : {0.2, 0.5}) {
+      const auto params = [&](const Box& b) { return paper_stick(b, mu); };
+      FieldsScene<PaperLaw> fields(stack, params, true, 0, true, true), nodal(stack, params, false, 0, true, true);
+      FieldsScene<PaperLaw> read(stack, params, true, 0, true, true);
+      const auto table = [=](double t) {
+        return Vec3(t > 0.1 && t < 0.5 ? amplitude * g0 : 0.0, 0.3 * amplitude * g0 * std::sin(8 * t), 0);
+      };
+      INFO("stack by hulls, mu " << mu << ", " << amplitude << " g");
+      for (const Box& box : fields.boxes) {
+        std::vector<int> nodes;
+        REQUIRE(fields.sim->contact_model().nodes_read(*fields.model, box.body, nodes));
+        CHECK(nodes.size() < fields.model->body(box.body).nodes.size() / 2);
+      }
+      read.sim->set_table_acceleration(table);
+      const auto read_all = [](const auto& sim, const StepInfo&) {
+        for (int n = 0; n < sim.model().num_nodes(); ++n) (void)sim.position(n);
+      };
+      read.sim->run_until(0.4, read_all);
+      const Gap g = run_both(fields, nodal, 0.4, table);
+      report("rigid fields by hulls: stack mu %.1f A %.1f g: position %.2e m, rotation %.2e, velocity %.2e m/s, "
+             "acceleration %.2e m/s^2, work %.2e", mu, amplitude, g.position, g.rotation, g.velocity, g.acceleration, g.work);
+      CHECK(g.position < 1e-9);
+      CHECK(g.rotation < 1e-9);
+      CHECK(g.velocity < 1e-6);
+      CHECK(g.acceleration < 1e-6);  // rounding of positions (1e-14 m) over beta dt^2: 1e-8 m/s^2
+      CHECK(g.work < 1e-8);
+      const NodeStates before = arrays_of(*fields.sim);
+      for (int n = 0; n < fields.model->num_nodes(); ++n) CHECK(fields.sim->position(n) == before.x[n]);
+      CHECK(same_bits(arrays_of(*read.sim), before));
+      // One more step: what it keeps of its start is the state before it, for either scheme.
+      for (auto* s : {&fields, &nodal}) {
+        const NodeStates start = arrays_of(*s->sim);
+        s->sim->step();
+        NodeStates kept;
+        s->sim->copy_step_start_states(kept);
+        CHECK(s->sim->step_start_time() == Approx(0.4).margin(1e-12));
+        CHECK(same_bits(kept, start));
+      }
+    }
 }

@@ -132,7 +132,10 @@ class RoomContact {
     for (const auto& b : bodies_)
       plane_history_.push_back(law_has_history || b.floor.stick_length > 0 || b.wall.stick_length > 0);
   }
-  void add_obstacle(MeshObstacle obstacle) { obstacles_.push_back(std::move(obstacle)); }
+  void add_obstacle(MeshObstacle obstacle) {
+    obstacles_.push_back(std::move(obstacle));
+    ++nodes_read_revision_;
+  }
 
   // A body whose nodes keep their places relative to each other (Simulation::set_rigid calls this):
   // only the vertices of its nodes' convex hull are tested against the floor and walls, those of the
@@ -145,6 +148,7 @@ class RoomContact {
     if (surface_on_) rebuild_surface_points(model);
     select_plane_nodes();
     update_hull_pairs(model);
+    ++nodes_read_revision_;
   }
   // Floor and wall contact at the members' surfaces (true) or their centre lines (false, the paper's),
   // for every body: a rigid body's support points become the hull of cubes of half a member's width
@@ -157,6 +161,7 @@ class RoomContact {
     rebuild_surface_points(model);
     select_plane_nodes();
     update_hull_pairs(model);
+    ++nodes_read_revision_;
   }
   bool surface() const { return surface_on_; }
   // Item-item contact of two rigid bodies by their hulls (true) or by their members' element pairs
@@ -166,12 +171,35 @@ class RoomContact {
   void set_rigid_pair_hulls(const Model& model, bool on = true) {
     hulls_on_ = on;
     update_hull_pairs(model);
+    ++nodes_read_revision_;
   }
   bool rigid_pair_hulls() const { return hulls_on_; }
   // Whether bodies a and b meet by their hulls (set_rigid_pair_hulls).
   bool hull_pair(int a, int b) const {
     return !hull_pair_.empty() && hull_pair_[static_cast<std::size_t>(a) * bodies_.size() + b];
   }
+  // The nodes of `body` an evaluation reads (positions, rotations, velocities) and puts forces on,
+  // ascending: its nodes against planes, its surface points' nodes and its long axis. False when any
+  // node may be read: item pairs by their members (the broad phase watches every node) or mesh
+  // obstacles. A simulation places a rigid body's other nodes only when they are read from outside
+  // (Simulation::RigidFields); nodes_read_revision() changes whenever the answer may.
+  bool nodes_read(const Model& model, int body, std::vector<int>& out) const {
+    out.clear();
+    if (!obstacles_.empty() || (model.num_bodies() > 1 && (!hulls_on_ || any_element_pairs_))) return false;
+    for (int n : model.body(body).nodes)
+      if (plane_node_[n]) out.push_back(n);
+    if (body < static_cast<int>(surface_groups_.size()))
+      for (const SurfaceGroup& g : surface_groups_[body]) {
+        if (g.node >= 0) out.push_back(g.node);
+        for (int sp : g.points) out.push_back(surface_points_[sp].node);
+      }
+    for (int n : {bodies_[body].long_axis_node_a, bodies_[body].long_axis_node_b})
+      if (n >= 0) out.push_back(n);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return true;
+  }
+  long nodes_read_revision() const { return nodes_read_revision_; }
   // The support points at the members' surfaces (all bodies, in body order).
   const std::vector<detail::SurfacePoint>& surface_points() const { return surface_points_; }
   // The nodes tested against the floor and walls (all but rigid bodies' inner nodes), ascending.
@@ -1106,6 +1134,7 @@ class RoomContact {
     Vec3 reported;  // its share of pair_forces_ at the evaluation
   };
   std::vector<ImplicitPair> implicit_pairs_;  // the pairs behind pair_tangents_
+  long nodes_read_revision_ = 0;              // nodes_read: counts the changes of what it answers
   bool hulls_on_ = false;                     // set_rigid_pair_hulls
   std::vector<char> hull_pair_;               // per body pair: meets by its hulls
   bool any_element_pairs_ = true;             // some body pair meets by its members

@@ -20,7 +20,9 @@
 #include <chrono>
 #include <exception>
 #include <functional>
+#include <limits>
 #include <memory>
+#include <numeric>
 #include <string>
 #include <span>
 #include <vector>
@@ -29,6 +31,7 @@
 #include "elements.hpp"
 #include "integrators.hpp"
 #include "model.hpp"
+#include "node_states.hpp"
 #include "solvers.hpp"
 #include "statics.hpp"
 
@@ -189,16 +192,19 @@ class Simulation {
   // A nodal load (3 forces, 3 moments), scaled by load_scale(t) in dynamics and by the load factor in
   // statics.
   void set_nodal_load(int node, const Vec6& load) {
+    place_body_nodes(check_node(node));
     nodal_load_.segment<6>(6 * check_node(node)) = load;
     nodes_set_from_outside(node);
   }
   void set_load_scale(std::function<double(double)> s) { load_scale_ = std::move(s); }
   void set_velocity(int node, const Vec6& v) {
+    place_body_nodes(check_node(node));
     v_.segment<6>(6 * check_node(node)) = v;
     nodes_set_from_outside(node);
   }
   // Rigid-body velocity field (v0 + w x (x - c)) for all nodes of a body.
   void set_body_velocity(int body, const Vec3& v0, const Vec3& w, const Vec3& c) {
+    if (!model_.body(body).nodes.empty()) place_body_nodes(model_.body(body).nodes.front());
     for (int n : model_.body(body).nodes) {
       v_.segment<3>(6 * n) = v0 + w.cross(x_[n] - c);
       v_.segment<3>(6 * n + 3) = w;
@@ -254,12 +260,14 @@ class Simulation {
   // Places a node (position and rotation) and recomputes the internal forces: for checks such as
   // "a rigid rotation produces no internal force". Velocities are left as they are.
   void set_pose(int node, const Vec3& x, const Mat3& R) {
-    x_[check_node(node)] = x;
+    place_body_nodes(check_node(node));
+    x_[node] = x;
     u_[node] = x - model_.node(node).X;
     R_[node] = R;
     nodes_set_from_outside(node);
   }
   void update_internal_forces() {
+    place_unplaced_nodes();
     evaluate_elements(false);
     committed_ = trial_;
   }
@@ -327,19 +335,38 @@ class Simulation {
   double time() const { return t_; }
   long steps() const { return steps_; }
   const Model& model() const { return model_; }
-  const Vec3& position(int n) const { return x_[n]; }
-  const Vec3& displacement(int n) const { return u_[n]; }
-  const Mat3& rotation(int n) const { return R_[n]; }
-  Vec6 velocity(int n) const { return v_.segment<6>(6 * n); }
-  Vec6 acceleration(int n) const { return a_.segment<6>(6 * n); }
-  const std::vector<Vec3>& positions() const { return x_; }
-  const std::vector<Vec3>& displacements() const { return u_; }
-  const std::vector<Mat3>& rotations() const { return R_; }
-  const Eigen::VectorXd& velocities() const { return v_; }
-  const Eigen::VectorXd& accelerations() const { return a_; }
+  // A node of a rigid body on its fields is placed when read (RigidFields: the step places only the
+  // nodes it reads), so these give every node's state whatever the contact reads.
+  const Vec3& position(int n) const { return place_node_if_unplaced(n), x_[n]; }
+  const Vec3& displacement(int n) const { return place_node_if_unplaced(n), u_[n]; }
+  const Mat3& rotation(int n) const { return place_node_if_unplaced(n), R_[n]; }
+  Vec6 velocity(int n) const { return place_node_if_unplaced(n), v_.segment<6>(6 * n); }
+  Vec6 acceleration(int n) const { return place_node_if_unplaced(n), a_.segment<6>(6 * n); }
+  const std::vector<Vec3>& positions() const { return place_unplaced_nodes(), x_; }
+  const std::vector<Vec3>& displacements() const { return place_unplaced_nodes(), u_; }
+  const std::vector<Mat3>& rotations() const { return place_unplaced_nodes(), R_; }
+  const Eigen::VectorXd& velocities() const { return place_unplaced_nodes(), v_; }
+  const Eigen::VectorXd& accelerations() const { return place_unplaced_nodes(), a_; }
+  // The nodes' state at the start of the last step, at step_start_time() (NaN until a step has
+  // predicted): what the step keeps of it (u0_, R0_, vn_, an_; a body on its fields: its fields at
+  // the start), positions X + u0. What is left of a run whose step diverged.
+  double step_start_time() const { return step_start_t_; }
+  void copy_step_start_states(NodeStates& out) const {
+    const int nn = model_.num_nodes();
+    out.u = u0_;
+    out.R = R0_;
+    out.v = vn_;
+    out.a = an_;
+    out.x.resize(nn);
+    for (int n = 0; n < nn; ++n) out.x[n] = model_.node(n).X + u0_[n];
+    for (int b = 0; b < model_.num_bodies(); ++b)
+      if (fields_[b].on) RigidFields::start_states(*this, b, out);
+  }
   // The first node whose position, rotation or velocity is not finite, -1 if none: one branch-free
-  // pass over each array, the node looked for only when one is not finite.
+  // pass over each array, the node looked for only when one is not finite. Bodies on their fields
+  // with unplaced nodes are checked by their fields and the nodes their step placed.
   int first_non_finite_node() const {
+    if (std::find(unplaced_.begin(), unplaced_.end(), 1) != unplaced_.end()) return first_non_finite_node_by_body();
     static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Mat3) == 9 * sizeof(double),
                   "the arrays of positions and rotations are read as flat arrays of doubles");
     const auto n = static_cast<Eigen::Index>(x_.size());
@@ -379,17 +406,20 @@ class Simulation {
   }
 
   Vec3 linear_momentum() const {
+    place_unplaced_nodes();
     Vec3 p = Vec3::Zero();
     for (int n = 0; n < model_.num_nodes(); ++n) p += mass_[6 * n] * v_.segment<3>(6 * n);
     return p;
   }
   Vec3 angular_momentum(const Vec3& about = Vec3::Zero()) const {
+    place_unplaced_nodes();
     Vec3 L = Vec3::Zero();
     for (int n = 0; n < model_.num_nodes(); ++n)
       L += (x_[n] - about).cross(mass_[6 * n] * v_.segment<3>(6 * n)) + rotary_momentum(n);
     return L;
   }
   EnergyLedger energy() const {
+    place_unplaced_nodes();
     EnergyLedger e = ledger_;
     e.kinetic = 0;
     for (int n = 0; n < model_.num_nodes(); ++n)
@@ -424,12 +454,14 @@ class Simulation {
   void save_state(StateWriter& w) const {
     static_assert(CheckpointableContact<Contact>, "furniture_fem: checkpoints need the contact policy's "
                                                   "transfer_state (core/checkpoint.hpp)");
+    place_unplaced_nodes();  // the arrays as a run that places every node has them
     transfer_state_of(*this, w);
   }
   void load_state(StateReader& r) {
     static_assert(CheckpointableContact<Contact>, "furniture_fem: checkpoints need the contact policy's "
                                                   "transfer_state (core/checkpoint.hpp)");
     transfer_state_of(*this, r);
+    std::fill(unplaced_.begin(), unplaced_.end(), 0);  // saved with every node placed
     refactorise_loaded_matrices();
     for (int b = 0; b < model_.num_bodies(); ++b)
       if (fields_[b].on) RigidFields::set_arms(*this, b);
@@ -452,6 +484,7 @@ class Simulation {
     enum Exit { keep_dynamics, restart_dynamics };
     StaticScope(Simulation& sim, Exit exit)
         : sim_(sim), saved_(sim.static_), exit_(exit), exceptions_(std::uncaught_exceptions()) {
+      sim.place_unplaced_nodes();  // statics reads every node
       sim.static_ = true;
     }
     ~StaticScope() {
@@ -740,6 +773,13 @@ class Simulation {
     sums_.assign(model_.num_bodies(), {});
     fields_.assign(model_.num_bodies(), {});
     rigid_arms_.assign(model_.num_bodies(), {});
+    step_nodes_.assign(model_.num_bodies(), {});
+    all_local_.assign(model_.num_bodies(), {});
+    for (int b = 0; b < model_.num_bodies(); ++b) {
+      all_local_[b].resize(model_.body(b).nodes.size());
+      std::iota(all_local_[b].begin(), all_local_[b].end(), 0);
+    }
+    unplaced_.assign(model_.num_bodies(), 0);
     contact_iterated_.assign(model_.num_bodies(), 0);
     solvers_.resize(model_.num_bodies());
     for (int b = 0; b < model_.num_bodies(); ++b) {
@@ -1881,9 +1921,12 @@ class Simulation {
   // A rigid body stepped on its fields (SimulationOptions::rigid_fields, detail/rigid_affine.hpp): the
   // nodal scheme of RigidBody with every translational field affine in the material arm rho_n and every
   // rotational one the same at every node, so the residual, the 6 x 6 system and the step's works come
-  // from the body's mass moments and the nodes with contact forces. The nodes are placed (x_, u_, R_,
-  // v_, a_ and the increment Du_, which the contact's end-of-step work reads) in one pass per solve, and
-  // their velocities (v_, vn_, v_contact_) in one pass at the predictor, where the contact reads them.
+  // from the body's mass moments and the nodes with contact forces. Only the nodes the step reads
+  // (step_nodes_: those the contact reads and loads) are placed (x_, u_, R_, v_, a_ and the increment
+  // Du_, which the contact's end-of-step work reads) once per solve, and their velocities (v_, vn_,
+  // v_contact_) at the predictor, where the contact reads them; the others are placed from the fields
+  // when read from outside (place_unplaced_nodes; the first second of configuration 3 rigid by hulls,
+  // whose contact reads a small part of the 1301 nodes: 1262 M -> 661 M instructions, docs/performance.md 7).
   // Its nodes' u0_, R0_, an_, fext0_ and fext1_ are not kept; fc0_ and fnet0_ hold the contact forces
   // alone (the body's uniform load is g0). Du_ is zero at the predictor only in the fields (not read).
   struct RigidFields {
@@ -2013,7 +2056,6 @@ class Simulation {
     static void predict(Simulation& sim, int b, const Loads& loads) {
       auto& bs = sim.systems_[b];
       Fields& F = sim.fields_[b];
-      const double dt = sim.opt_.dt;
       F.c_start = F.c;
       F.Q_start = F.Q;
       F.f.vn = F.f.v;
@@ -2028,18 +2070,8 @@ class Simulation {
       bs.rigid_dc.setZero();
       bs.rigid_Q.setIdentity();
       bs.rigid_at_start = true;
-      const detail::AffineField vc = F.f.vn + dt * F.f.an;
-      const Vec3 wc = F.f.wn + dt * F.f.alphan;
-      const auto& arms = sim.rigid_arms_[b];
-      double* v = sim.v_.data();
-      double* vn = sim.vn_.data();
-      double* vcon = sim.v_contact_.data();
-      for (size_t k = 0; k < bs.nodes.size(); ++k) {
-        const int i = 6 * bs.nodes[k];
-        put(v + i, at(F.f.v, arms[k]), F.f.w);
-        put(vn + i, at(F.f.vn, arms[k]), F.f.wn);
-        put(vcon + i, at(vc, arms[k]), wc);
-      }
+      place_start_rates(sim, b, sim.step_nodes(b));
+      sim.unplaced_[b] = !sim.step_nodes_[b].empty();
     }
     // Newmark's acceleration and velocity from the increment (IntegratorCoefficients on the fields).
     static void rates(const Simulation& sim, Fields& F) {
@@ -2049,20 +2081,26 @@ class Simulation {
       F.f.alpha = sim.coef_.acceleration(F.dtheta, F.f.wn, F.f.alphan, dt);
       F.f.w = sim.coef_.velocity(F.f.wn, F.f.alphan, F.f.alpha, dt);
     }
-    // The increment's rates and the nodes placed on the body's motion.
+    // The increment's rates and the nodes the step reads placed on the body's motion.
     static void kinematics(Simulation& sim, int b) {
-      auto& bs = sim.systems_[b];
-      Fields& F = sim.fields_[b];
-      rates(sim, F);
-      bs.rigid_at_start = false;
+      rates(sim, sim.fields_[b]);
+      sim.systems_[b].rigid_at_start = false;
+      place_motion(sim, b, sim.step_nodes(b));
+      sim.unplaced_[b] = !sim.step_nodes_[b].empty();
+    }
+    // Nodes ks (local indices) of body b on the body's motion: position, displacement, rotation,
+    // velocity, acceleration and increment.
+    static void place_motion(const Simulation& sim, int b, std::span<const int> ks) {
+      const Fields& F = sim.fields_[b];
       const Vec3 shift = F.c - F.mm.centre;  // u_n = (c - X_c) + (Q - I) rho_n: small u stays precise
       const Mat3 turn = F.Q - Mat3::Identity();
       const auto& arms = sim.rigid_arms_[b];
+      const auto& nodes = sim.systems_[b].nodes;
       double* v = sim.v_.data();
       double* a = sim.a_.data();
       double* du = sim.Du_.data();
-      for (size_t k = 0; k < bs.nodes.size(); ++k) {
-        const int n = bs.nodes[k], i = 6 * n;
+      for (int k : ks) {
+        const int n = nodes[k], i = 6 * n;
         const Vec3& rho = arms[k];
         sim.u_[n] = affine(shift, turn, rho);
         sim.x_[n] = affine(F.c, F.Q, rho);
@@ -2072,14 +2110,56 @@ class Simulation {
         put(du + i, at(F.du, rho), F.dtheta);
       }
     }
+    // Nodes ks's velocities: now, at the step's start, and the one the contact is evaluated at.
+    static void place_start_rates(const Simulation& sim, int b, std::span<const int> ks) {
+      const Fields& F = sim.fields_[b];
+      const detail::AffineField vc = F.f.vn + sim.opt_.dt * F.f.an;
+      const Vec3 wc = F.f.wn + sim.opt_.dt * F.f.alphan;
+      const auto& arms = sim.rigid_arms_[b];
+      const auto& nodes = sim.systems_[b].nodes;
+      double* v = sim.v_.data();
+      double* vn = sim.vn_.data();
+      double* vcon = sim.v_contact_.data();
+      for (int k : ks) {
+        const int i = 6 * nodes[k];
+        put(v + i, at(F.f.v, arms[k]), F.f.w);
+        put(vn + i, at(F.f.vn, arms[k]), F.f.wn);
+        put(vcon + i, at(vc, arms[k]), wc);
+      }
+    }
+    // Nodes ks placed whole: what a reader from outside sees of them (place_unplaced_nodes).
+    static void place(const Simulation& sim, int b, std::span<const int> ks) {
+      place_motion(sim, b, ks);
+      place_start_rates(sim, b, ks);
+    }
+    static void place_all(const Simulation& sim, int b) {
+      place(sim, b, sim.all_local_[b]);
+      sim.unplaced_[b] = 0;
+    }
+    // A body's state at the start of the step on its fields (step_start_states).
+    static void start_states(const Simulation& sim, int b, NodeStates& out) {
+      const Fields& F = sim.fields_[b];
+      const auto& nodes = sim.systems_[b].nodes;
+      const Vec3 shift = F.c_start - F.mm.centre;
+      const Mat3 turn = F.Q_start - Mat3::Identity();
+      for (size_t k = 0; k < nodes.size(); ++k) {
+        const int n = nodes[k], i = 6 * n;
+        const Vec3& rho = sim.rigid_arms_[b][k];
+        out.u[n] = affine(shift, turn, rho);
+        out.x[n] = affine(F.c_start, F.Q_start, rho);
+        out.R[n] = F.Q_start;
+        put(out.v.data() + i, at(F.f.vn, rho), F.f.wn);
+        put(out.a.data() + i, at(F.f.an, rho), F.f.alphan);
+      }
+    }
 
     // The nodes carrying forces besides their share of the uniform load: those with contact forces at
     // either end of the step.
     static std::vector<detail::RigidNodeExtra> loaded_nodes(const Simulation& sim, int b) {
       const double af = sim.coef_.alpha_f;
       std::vector<detail::RigidNodeExtra> out;
-      for (int n : sim.systems_[b].nodes) {
-        const int i = 6 * n;
+      for (int k : sim.step_nodes(b)) {
+        const int n = sim.systems_[b].nodes[k], i = 6 * n;
         if (!(nonzero6(sim.fc1_.data() + i) | nonzero6(sim.fnet0_.data() + i))) continue;
         const auto fc1 = sim.fc1_.template segment<6>(i), f0 = sim.fnet0_.template segment<6>(i);
         detail::RigidNodeExtra e;
@@ -2114,8 +2194,8 @@ class Simulation {
       const auto w = detail::rigid_step_work(F.mm, F.du, F.dtheta, F.f, g - F.g0, g - F.g1, sim.opt_.mass_damping);
       s.external_work += w.external;
       s.damping_work += w.damping;
-      for (int n : bs.nodes) {
-        const int i = 6 * n;
+      for (int k : sim.step_nodes(b)) {
+        const int i = 6 * bs.nodes[k];
         if (!(nonzero6(sim.fc0_.data() + i) | nonzero6(sim.fc1_.data() + i))) continue;
         const auto fc0 = sim.fc0_.template segment<6>(i), fc1 = sim.fc1_.template segment<6>(i);
         const auto du = sim.Du_.template segment<6>(i);
@@ -2132,9 +2212,65 @@ class Simulation {
     static bool finite(const Fields& F) {
       return F.du.a.allFinite() && F.du.B.allFinite() && F.dtheta.allFinite() && F.c.allFinite() && F.Q.allFinite();
     }
+    // The increment, the placement and the velocity (what first_non_finite_node checks of the nodes).
+    static bool state_finite(const Fields& F) {
+      return finite(F) && F.f.v.a.allFinite() && F.f.v.B.allFinite() && F.f.w.allFinite();
+    }
   };
   bool increment_finite(int b) const {
     return fields_[b].on ? RigidFields::finite(fields_[b]) : detail::nodes_finite(Du_, systems_[b].nodes);
+  }
+  // The nodes each body's step reads (step_nodes_), from the contact's nodes_read, taken again when
+  // its answer may have changed; a contact without it: every node.
+  void update_step_nodes() {
+    if constexpr (requires(std::vector<int>& out) {
+                    contact_.nodes_read(model_, 0, out);
+                    contact_.nodes_read_revision();
+                  }) {
+      if (contact_.nodes_read_revision() == step_nodes_revision_) return;
+      place_unplaced_nodes();  // left by the old lists
+      step_nodes_revision_ = contact_.nodes_read_revision();
+      std::vector<int> read;
+      for (int b = 0; b < model_.num_bodies(); ++b) {
+        auto& local = step_nodes_[b];
+        local.clear();
+        if (!contact_.nodes_read(model_, b, read)) continue;
+        for (int n : read) local.push_back(local_index_[n]);
+        std::sort(local.begin(), local.end());
+        if (local.size() == systems_[b].nodes.size()) local.clear();
+      }
+    }
+  }
+  // The local indices of the nodes body b's step reads.
+  const std::vector<int>& step_nodes(int b) const { return step_nodes_[b].empty() ? all_local_[b] : step_nodes_[b]; }
+  void place_unplaced_nodes() const {
+    for (int b = 0; b < static_cast<int>(unplaced_.size()); ++b)
+      if (unplaced_[b]) RigidFields::place_all(*this, b);
+  }
+  void place_body_nodes(int node) const {
+    if (const int b = model_.node(node).body; unplaced_[b]) RigidFields::place_all(*this, b);
+  }
+  void place_node_if_unplaced(int n) const {
+    if (const int b = model_.node(n).body; unplaced_[b])
+      RigidFields::place(*this, b, std::span<const int>(&local_index_[n], 1));
+  }
+  int first_non_finite_node_by_body() const {
+    const auto bad = [&](int n) {
+      return !(x_[n].allFinite() && R_[n].allFinite() && v_.segment<6>(6 * n).allFinite());
+    };
+    int first = -1;
+    const auto note = [&](int n) {
+      if (bad(n) && (first < 0 || n < first)) first = n;
+    };
+    for (int b = 0; b < model_.num_bodies(); ++b) {
+      const auto& nodes = systems_[b].nodes;
+      if (unplaced_[b] && !RigidFields::state_finite(fields_[b])) RigidFields::place_all(*this, b);
+      if (unplaced_[b])
+        for (int k : step_nodes_[b]) note(nodes[k]);
+      else
+        for (int n : nodes) note(n);
+    }
+    return first;
   }
   // A node's state or load set from outside after the start: its body's fields are fitted again.
   void nodes_set_from_outside(int node) {
@@ -2230,11 +2366,16 @@ class Simulation {
   bool started_ = false, static_ = false;
   long factorizations_offset_ = 0;  // a loaded checkpoint's count, less the factorisations loading made
 
-  std::vector<Vec3> x_, u_, u0_;  // positions, displacements (kept apart for precision)
-  std::vector<Mat3> R_, R0_;
+  // The arrays RigidFields places a body's nodes in are mutable: a body on its fields leaves the nodes
+  // its step does not read unplaced, and the const readers place them first (place_unplaced_nodes).
+  mutable std::vector<Vec3> x_, u_;  // positions, displacements (kept apart for precision)
+  std::vector<Vec3> u0_;
+  mutable std::vector<Mat3> R_;
+  std::vector<Mat3> R0_;
   std::vector<int> rotary_index_;  // per node: its entry in rotary0_, or -1 (isotropic rotary inertia)
   std::vector<Mat3> rotary0_;      // initial rotary inertia tensors of the nodes with a point inertia
-  Eigen::VectorXd v_, a_, vn_, an_, v_contact_, Du_, r_, fint_, fext0_, fext1_, fc0_, fc1_, fnet0_, mass_, nodal_load_, fgrav_;
+  mutable Eigen::VectorXd v_, a_, vn_, v_contact_, Du_;
+  Eigen::VectorXd an_, r_, fint_, fext0_, fext1_, fc0_, fc1_, fnet0_, mass_, nodal_load_, fgrav_;
   Eigen::VectorXd contact_delta_;
   std::vector<Vec6> predictor_shift_;  // the linearised contact forces' shift from v_contact_ to v_ at the predictor
   std::vector<Vec3> pair_predictor_shift_;    // the same for the pairs of rigid groups
@@ -2251,6 +2392,14 @@ class Simulation {
   std::vector<detail::BodySystem> systems_;
   std::vector<detail::RigidFieldState> fields_;  // per body: a rigid body stepped on its fields (RigidFields)
   std::vector<std::vector<Vec3>> rigid_arms_;    // per body on its fields: its nodes' material arms
+  // Per body: the local indices of the nodes its step reads (the contact's nodes_read), ascending;
+  // empty: every node. A body on its fields places only these (RigidFields); unplaced_ says it left
+  // the others unplaced since its fields last moved.
+  std::vector<std::vector<int>> step_nodes_;
+  std::vector<std::vector<int>> all_local_;  // per body: 0, 1, ..., its node count - 1
+  long step_nodes_revision_ = -1;  // the contact's nodes_read_revision() they were taken at
+  mutable std::vector<char> unplaced_;
+  double step_start_t_ = std::numeric_limits<double>::quiet_NaN();  // step_start_time()
   std::vector<std::unique_ptr<LinearSolver>> solvers_;  // Eigen's solvers are not copyable
   EnergyLedger ledger_;
   StepTimings timings_;
@@ -2301,11 +2450,14 @@ StepInfo Simulation<Element, Integrator, LinearSolver, Contact>::step() {
     ~AddTotal() { t.total += std::chrono::duration<double>(std::chrono::steady_clock::now() - s).count(); }
   } add_total{timings_, step_start};
   if (!started_) start();
+  update_step_nodes();
+  step_start_t_ = std::numeric_limits<double>::quiet_NaN();
   const double t1 = t_ + opt_.dt;
   t_state_ = t1;
   // Predictor "no motion" (Du = 0) and the loads at t_{n+1}. Its element forces are the last step's.
   const Loads loads = loads_at(t1);
   body_sweep([&](int b) { predict_body(b, loads); });
+  step_start_t_ = t_;
   // The predictor's Newmark velocity, (1 - gamma / beta) v_n, has the wrong sign, and friction or the
   // paper's damping evaluated there would pump energy: contact sees v_n + dt a_n (v_contact_) instead.
   timed(timings_.contact, [&] {

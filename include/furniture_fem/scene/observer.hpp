@@ -23,6 +23,7 @@
 #include "../core/checkpoint.hpp"
 #include "../core/elements.hpp"
 #include "../core/integrators.hpp"
+#include "../core/node_states.hpp"
 #include "../core/rotation.hpp"
 #include "../core/step_report.hpp"
 #include "../excitation/excitation.hpp"
@@ -57,13 +58,6 @@ class SimulationView {
   virtual std::string_view element_name() const = 0;
 };
 
-// Every node's state at one time, in the simulation's own layout (the runner keeps the last step's).
-struct NodeStates {
-  std::vector<Vec3> x, u;  // positions, displacements
-  std::vector<Mat3> R;     // rotations
-  Eigen::VectorXd v, a;    // velocities and accelerations, six per node
-};
-
 // The stepping side, seen only by the runner.
 class SteppedSimulation : public SimulationView {
  public:
@@ -71,10 +65,12 @@ class SteppedSimulation : public SimulationView {
   // Simulation::save_state / load_state (core/checkpoint.hpp).
   virtual void save_state(StateWriter& w) const = 0;
   virtual void load_state(StateReader& r) = 0;
-  // Every node's state copied into `into` in one call, array by array (five virtual calls per node
-  // took 5 % of a rigid study run: docs/performance.md section 8); returns the first node whose
-  // position, rotation or velocity is not finite, -1 if none.
-  virtual int copy_node_states(NodeStates& into) const = 0;
+  // Every node's state at time t copied into `into` in one call, array by array (five virtual calls
+  // per node took 5 % of a rigid study run: docs/performance.md section 8): t the current time, or
+  // the start of the last step (what is left of a step that diverged); false for any other t.
+  virtual bool copy_node_states_at(double t, NodeStates& into) const = 0;
+  // The first node whose position, rotation or velocity is not finite, -1 if none.
+  virtual int first_non_finite_node() const = 0;
 };
 
 // The scene's outputs requests resolved to nodes and elements (resolve_output_requests, runner.hpp).

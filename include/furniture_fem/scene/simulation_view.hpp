@@ -29,14 +29,21 @@ class SimulationViewOf final : public SteppedSimulation {
   StepInfo step() override { return sim_.step(); }
   void save_state(StateWriter& w) const override { sim_.save_state(w); }
   void load_state(StateReader& r) override { sim_.load_state(r); }
-  int copy_node_states(NodeStates& into) const override {
+  bool copy_node_states_at(double t, NodeStates& into) const override {
+    // A step that stopped after its predictor is at the start time still: its start state is the one.
+    if (t == sim_.step_start_time()) {
+      sim_.copy_step_start_states(into);
+      return true;
+    }
+    if (t != sim_.time()) return false;
     into.x = sim_.positions();
     into.u = sim_.displacements();
     into.R = sim_.rotations();
     into.v = sim_.velocities();
     into.a = sim_.accelerations();
-    return sim_.first_non_finite_node();
+    return true;
   }
+  int first_non_finite_node() const override { return sim_.first_non_finite_node(); }
   double time() const override { return sim_.time(); }
   long steps() const override { return sim_.steps(); }
   const Vec3& position(int n) const override { return sim_.position(n); }
