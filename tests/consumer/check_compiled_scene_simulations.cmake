@@ -1,0 +1,28 @@
+# A unit linked to furniture_fem::scene_compiled that builds a scene's simulation itself
+# (SceneSimulation<Law, Solver> of a scene law) takes that simulation's constructor and step from the
+# library (scene/scene_simulation.hpp declares them extern): undefined (U) in its object, not compiled
+# there (weak, W). -DOBJECTS=<test_scene's object files>; the unit checked: test_points_and_block.
+string(REPLACE "," ";" objects "${OBJECTS}")
+list(FILTER objects INCLUDE REGEX "test_points_and_block\\.cpp\\.o$")
+list(LENGTH objects n)
+if(NOT n EQUAL 1)
+  message(FATAL_ERROR "test_points_and_block's object not among ${OBJECTS}")
+endif()
+set(OBJECT ${objects})
+execute_process(COMMAND nm -C ${OBJECT} OUTPUT_VARIABLE symbols RESULT_VARIABLE rc)
+if(rc)
+  message(FATAL_ERROR "nm failed on ${OBJECT}")
+endif()
+set(scene_sim "furniture_fem::Simulation<furniture_fem::ShiftedIntegrationTimoshenko<furniture_fem::GaussPairPlacement>, furniture_fem::RuntimeIntegrator, [^\n]*>::step\\(\\)")
+string(REGEX MATCHALL " U ${scene_sim}" taken "${symbols}")
+string(REGEX MATCHALL " [TW] ${scene_sim}" compiled "${symbols}")
+list(LENGTH taken n_taken)
+list(LENGTH compiled n_compiled)
+if(n_taken EQUAL 0)
+  message(FATAL_ERROR "${OBJECT}: no scene simulation's step taken from furniture_fem::scene_compiled")
+endif()
+if(n_compiled GREATER 0)
+  list(GET compiled 0 first)
+  message(FATAL_ERROR "${OBJECT}: ${n_compiled} scene simulations' steps compiled in the unit, e.g.${first}")
+endif()
+message(STATUS "${n_taken} scene simulations' steps taken from the compiled scene runner, none compiled")
