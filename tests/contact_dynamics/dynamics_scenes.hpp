@@ -282,10 +282,8 @@ inline SimulationOptions options_dt(double dt) {
 // The group's room simulations (Newmark, the direct solver, each scene law the tests run): their
 // constructor and step are compiled once, in compiled_simulations.cpp, instead of in each unit that
 // steps one (docs/performance.md, section 6). `extern` here, nothing there.
-#define FFEM_DYNAMICS_SIMULATION(EXTERN, LAW)                                                         \
-  EXTERN template Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact<LAW>>::Simulation( \
-      const Model&, Newmark, SimulationOptions, RoomContact<LAW>);                                     \
-  EXTERN template StepInfo Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact<LAW>>::step();
+#define FFEM_DYNAMICS_SIMULATION(EXTERN, LAW) \
+  FFEM_SIMULATION_RUN_MEMBERS(EXTERN, AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact<LAW>)
 #define FFEM_DYNAMICS_SIMULATIONS(EXTERN)                   \
   FFEM_DYNAMICS_SIMULATION(EXTERN, PaperLaw)                \
   FFEM_DYNAMICS_SIMULATION(EXTERN, PaperAnisotropicFloorLaw) \

@@ -2500,6 +2500,15 @@ StaticPath Simulation<Element, Integrator, LinearSolver, Contact>::solve_static_
   return detail::StaticSolver<Simulation>(*this).arc_length(options);
 }
 
+// What a time-stepping run instantiates of a composition (its constructor and step, both defined out of
+// the class), declared `extern` (EXTERN = extern) or instantiated (EXTERN empty), for code that compiles
+// a composition's runs once for other units: scene_compiled's scene simulations
+// (scene/scene_simulation.hpp), the contact-dynamics tests' rooms. Inside namespace furniture_fem.
+#define FFEM_SIMULATION_RUN_MEMBERS(EXTERN, ELEMENT, INTEGRATOR, SOLVER, CONTACT)                                \
+  EXTERN template Simulation<ELEMENT, INTEGRATOR, SOLVER, CONTACT>::Simulation(const Model&, INTEGRATOR,          \
+                                                                               SimulationOptions, CONTACT); \
+  EXTERN template StepInfo Simulation<ELEMENT, INTEGRATOR, SOLVER, CONTACT>::step();
+
 // The combinations the compiled core (src/core/simulation_instances.cpp, target
 // furniture_fem::core_compiled) instantiates. A program that links it gets FURNITURE_FEM_COMPILED_CORE
 // from the target and compiles none of their solver code itself: the README's snippet in 7 s instead of

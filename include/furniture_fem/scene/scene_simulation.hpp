@@ -526,13 +526,9 @@ struct SceneSimulation {
 // instantiates whatever it uses, as before.
 #if defined(FURNITURE_FEM_COMPILED_SCENE) || defined(FURNITURE_FEM_BUILDING_SCENE_LIBRARY) || \
     defined(FURNITURE_FEM_BUILDING_SCENE_SIMULATIONS)
-#define FFEM_SCENE_LAW_CONTACT(I) RoomContact<scene_contact_laws::at<I>::law>
 // `extern` (a declaration) or nothing (the definition, in the library's unit that holds law I).
-#define FFEM_SCENE_LAW_RUN_MEMBERS(EXTERN, I, SOLVER)                                                   \
-  EXTERN template Simulation<AsiGaussTimoshenko, RuntimeIntegrator, SOLVER,                             \
-                             FFEM_SCENE_LAW_CONTACT(I)>::Simulation(const Model&, RuntimeIntegrator,    \
-                                                                    SimulationOptions, FFEM_SCENE_LAW_CONTACT(I)); \
-  EXTERN template StepInfo Simulation<AsiGaussTimoshenko, RuntimeIntegrator, SOLVER, FFEM_SCENE_LAW_CONTACT(I)>::step();
+#define FFEM_SCENE_LAW_RUN_MEMBERS(EXTERN, I, SOLVER) \
+  FFEM_SIMULATION_RUN_MEMBERS(EXTERN, AsiGaussTimoshenko, RuntimeIntegrator, SOLVER, RoomContact<scene_contact_laws::at<I>::law>)
 // The laws that allow CG: the first two (paper, paper_anisotropic), as their records say.
 #define FFEM_SCENE_LAW_ALLOWS_CG(I) ((I) < 2)
 static_assert(scene_contact_laws::size == 6,
