@@ -397,3 +397,71 @@ TEST_CASE("contact.plane_contact_at: read, written back, named errors", "[scene]
                {"contact", {{"plane_contact_at", "surfaces"}}}};
   CHECK(read_error(full) == "no error");
 }
+
+namespace {
+
+// A block W x 0.4 x H m of 20 kg with its centre of gravity at h (not at mid height: the frame's
+// centroid is then elsewhere), `stiff` law, mu, under the table acceleration `x_points` along +X:
+// run_scene's final state of it (no files).
+ItemFinalState block_final_state(double W, double H, double h, double mu, const json& x_points, double duration) {
+  json j = block_scene({{"source", "points"}, {"x", x_points}}, mu);
+  j["items"][0]["params"]["width"] = W;
+  j["items"][0]["params"]["height"] = H;
+  j["items"][0]["params"]["cog_h"] = h;
+  j["contact"] = {{"law", "stiff"}};
+  j["duration"] = duration;
+  RunOptions o;
+  o.write_files = false;
+  o.progress = false;
+  const RunSummary s = run_scene(parse_scene_json(j, "cog.json"), o);
+  REQUIRE(s.status == "completed");
+  REQUIRE(s.items.size() == 1);
+  return s.items[0];
+}
+
+}  // namespace
+
+TEST_CASE("a block's final centre of gravity weighs its point mass: at rest, sliding and overturned",
+          "[scene][block][points][final_state]") {
+  // A block carries 99 % of its mass on its hub (a point mass), at its centre of gravity h; its light
+  // frame's centroid lies near mid height. The final state measured the frame alone while its start
+  // weighed every mass: a block at rest reported cog_displacement z = +(H/2 - h) and a slide.
+  SECTION("at rest") {
+    // No table motion, 0.5 s: it settles by the stiff law's 2.5 um; bound 0.1 mm (before: z +0.05 m).
+    for (const double h : {0.25, 0.4}) {
+      const ItemFinalState st = block_final_state(0.4, 0.6, h, 0.3, {{0.0, 0.0}, {1.0, 0.0}}, 0.5);
+      INFO("cog at " << h << " m: displacement " << st.cog_displacement.transpose() << " m, slide " << st.slide);
+      CHECK(st.cog_displacement.norm() < 1e-4);
+      CHECK(st.slide < 1e-4);
+      CHECK(st.state == "standing");
+    }
+  }
+  SECTION("sliding") {
+    // 0.6 g from 0.2 s (a 1 ms ramp), mu 0.3, 0.7 s: it slides back by (0.6 - 0.3) g t^2 / 2 = 0.367 m
+    // at t = 0.4995 s, upright (b/h = 0.8 at h 0.25: no tipping at 0.6 g). Bounds: 2 % (the stiff law's
+    // sliding, holding_still.cpp: within 1 %) and 1 mm of height.
+    const ItemFinalState st = block_final_state(0.4, 0.6, 0.25, 0.3, {{0.2, 0.0}, {0.201, 0.6 * g}, {5.0, 0.6 * g}}, 0.7);
+    const double t = 0.5 - 0.0005, closed = 0.5 * (0.6 - 0.3) * g * t * t;
+    INFO("displacement " << st.cog_displacement.transpose() << " m, slide " << st.slide << " m, closed form " << closed);
+    CHECK(st.slide == Approx(closed).epsilon(0.02));
+    CHECK(st.cog_displacement.x() == Approx(-closed).epsilon(0.02));
+    CHECK(std::abs(st.cog_displacement.z()) < 1e-3);
+    CHECK(st.state == "slid");
+  }
+  SECTION("overturned") {
+    // W 0.2, H 0.6, h 0.25 (b/h 0.4), mu 2, 1.5 g b/h held: it tips about its -X bottom edge onto its
+    // side, where b/h is 3 and it stays. A quarter turn about the edge takes the centre of gravity from
+    // (0, h) to (-W/2 - h, W/2): displacement (-0.35, -0.15) m. Bounds: 5 mm in height (its side rests on
+    // edge tubes 2 to 5 mm inside the faces), 2 cm along X (it lands and skids); the frame's centroid
+    // at about H/2 would give -0.40 m.
+    const double a = 1.5 * g * 0.1 / 0.25;
+    const ItemFinalState st = block_final_state(0.2, 0.6, 0.25, 2.0, {{0.2, 0.0}, {0.201, a}, {5.0, a}}, 2.5);
+    INFO("displacement " << st.cog_displacement.transpose() << " m, tilt " << st.tilt_deg << " deg, " << st.state);
+    CHECK(st.state == "overturned");
+    CHECK(st.tilt_deg == Approx(90).margin(2));
+    CHECK(st.cog_displacement.z() == Approx(0.1 - 0.25).margin(5e-3));
+    CHECK(st.cog_displacement.x() == Approx(-0.1 - 0.25).margin(0.02));
+    CHECK(std::abs(st.cog_displacement.y()) < 0.01);
+    CHECK(st.slide == Approx(std::hypot(st.cog_displacement.x(), st.cog_displacement.y())).epsilon(1e-12));
+  }
+}

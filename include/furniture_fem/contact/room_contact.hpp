@@ -263,14 +263,14 @@ class RoomContact {
     any_body_plane_force(view, body, [&](int n, std::size_t, const ContactForce& cf) {
       out.status.push_back(status_of(cf));
       if (cf.in_contact) {
-        out.tangents.push_back({n, cf.K, cf.C, view.x[n], Vec3(view.v.template segment<3>(6 * n))});
+        out.tangents.push_back({n, regime_of(cf), cf.K, cf.C, view.x[n], Vec3(view.v.template segment<3>(6 * n))});
         out.forces.push_back(wrench(cf.on_a));
       }
       return false;
     }, [&](const detail::SurfacePoint& pt, std::size_t, const PointContact& pc) {
       out.status.push_back(status_of(pc.force));
       if (pc.force.in_contact) {
-        out.tangents.push_back({pt.node, pc.force.K, pc.force.C, pc.x, pc.v, pt.arm0});
+        out.tangents.push_back({pt.node, regime_of(pc.force), pc.force.K, pc.force.C, pc.x, pc.v, pt.arm0});
         out.forces.push_back(wrench(pc.force.on_a, pc.arm));
       }
       return false;
@@ -410,8 +410,9 @@ class RoomContact {
         if (!tangents_.empty() && tangents_.back().node == n && tangents_.back().at_node()) {
           tangents_.back().K += cf.K;
           tangents_.back().C += cf.C;
+          tangents_.back().status += regime_of(cf);
         } else {
-          tangents_.push_back({n, cf.K, cf.C, x, v});
+          tangents_.push_back({n, regime_of(cf), cf.K, cf.C, x, v});
         }
       }
     }
@@ -506,7 +507,7 @@ class RoomContact {
     Vec6 w;
     w << cf.on_a, moment;
     plane_applied_.emplace_back(n, w);
-    tangents_.push_back({n, cf.K, cf.C, pc.x, pc.v, pt.arm0});
+    tangents_.push_back({n, regime_of(cf), cf.K, cf.C, pc.x, pc.v, pt.arm0});
   }
   // Whether a flexible body's node is so far from plane p that no corner of its cube reaches it (its
   // half diagonal is sqrt(3) half widths).
@@ -602,6 +603,8 @@ class RoomContact {
     if (!cf.in_contact) return 0;
     return cf.normal > 0 || !clamps_tensile() ? 1 : 2;
   }
+  // Its regime for a reused factorisation (NodalContactTangent::status): stick, slip or clamped.
+  int regime_of(const ContactForce& cf) const { return contact_status_code(cf.sticking, status_of(cf) == 2); }
   bool clamps_tensile() const {
     if constexpr (requires { law_.clamp_tensile; }) return law_.clamp_tensile;
     else return false;

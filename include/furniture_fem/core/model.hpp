@@ -361,18 +361,26 @@ class Model {
       if (nodes_[p.node].body == b) m += p.mass;
     return m;
   }
+  // Centre of gravity of a body in its initial configuration: every mass it carries, its elements'
+  // line masses and its point masses.
   Vec3 body_centre_of_gravity(int b) const {
+    return body_centre_of_gravity(b, [this](int n) -> const Vec3& { return nodes_[n].X; });
+  }
+  // The same with the nodes at position(n) (a deformed or moved configuration): the final state's centre
+  // of gravity must weigh the same masses as the start's, or a body at rest reports a displacement.
+  template <class Position>
+  Vec3 body_centre_of_gravity(int b, Position&& position) const {
     double m = 0;
     Vec3 c = Vec3::Zero();
     for (int e : bodies_.at(b).elements) {
       const double me = elements_[e].line_mass * element_length(e);
       m += me;
-      c += me * 0.5 * (nodes_[elements_[e].n1].X + nodes_[elements_[e].n2].X);
+      c += me * 0.5 * (position(elements_[e].n1) + position(elements_[e].n2));
     }
     for (const auto& p : point_masses_)
       if (nodes_[p.node].body == b) {
         m += p.mass;
-        c += p.mass * nodes_[p.node].X;
+        c += p.mass * position(p.node);
       }
     return m > 0 ? Vec3(c / m) : c;
   }

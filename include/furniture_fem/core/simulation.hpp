@@ -113,14 +113,24 @@ concept ContactPolicy = requires(C c, const ContactView& view, Eigen::VectorXd& 
 // the node's initial frame: x and v are then the point's, which moves with the node's rotation too
 // (dx_point = dx + dtheta x arm), and the force acts there (a moment arm x f on the node). Only
 // rigid bodies' contacts may have one.
+// `status` is the contact's regime (contact_status_code; a node's terms summed: counts of each), which a
+// factorisation reused between refreshes compares on its own: a change of regime always enters the step.
 struct NodalContactTangent {
   static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
   int node = -1;
+  int status = 0;
   Mat3 K = Mat3::Zero(), C = Mat3::Zero();
   Vec3 x = Vec3::Zero(), v = Vec3::Zero();
   Vec3 arm0 = Vec3::Zero();
   bool at_node() const { return arm0.x() == 0 && arm0.y() == 0 && arm0.z() == 0; }
 };
+
+// A contact's regime as NodalContactTangent::status counts it: pushing while slipping (or without
+// friction) 1, sticking 1 << 8, touching with its force clamped at zero 1 << 16. Summed over a node's
+// terms the counts stay apart (fewer than 256 terms a node), so any change of any term's regime shows.
+inline constexpr int contact_status_code(bool sticking, bool clamped) {
+  return clamped ? 1 << 16 : sticking ? 1 << 8 : 1;
+}
 
 // The linearisation of an item-item contact force about the state it was evaluated at: the force F
 // acts on body_a at `point` and -F on body_b; the contact points move with their segments' nodes
@@ -444,6 +454,14 @@ class Simulation {
     for (const auto& s : solvers_) f += s->factorizations();
     return f;
   }
+  // The factor-reuse error: the largest change of a node's contact term, relative to the term, that a
+  // flexible body's reused factorisation has left out of a solve since the start (bounded by the change
+  // tolerance, 0.3; a change of contact regime is never left out). 0 when every step was refactorised.
+  double factor_reuse_error() const {
+    double e = 0;
+    for (const auto& bs : systems_) e = std::max(e, bs.max_reuse_error);
+    return e;
+  }
 
   // ---- checkpoint (core/checkpoint.hpp, docs/core/checkpoint.md) ----
   // Everything a step reads that an earlier step wrote: time, displacements, rotations, velocities,
@@ -676,8 +694,12 @@ class Simulation {
       const Mat3 k = kf * (t.K + cf * t.C);
       const auto same = std::find_if(bs.contact.begin(), bs.contact.end(),
                                      [&](const auto& c) { return c.local == local && c.at_node() && t.at_node(); });
-      if (same != bs.contact.end()) same->K += k;
-      else bs.contact.push_back({local, k, t.arm0});
+      if (same != bs.contact.end()) {
+        same->K += k;
+        same->status += t.status;
+      } else {
+        bs.contact.push_back({local, t.status, k, t.arm0});
+      }
     }
   }
 
@@ -856,7 +878,7 @@ class Simulation {
         for (std::size_t i = 0; i < nnz; ++i) ar(bs.K.valuePtr()[i]);
       }
       ar(bs.Q_factor, bs.steps_since_refresh, bs.needs_refresh, bs.assembled, bs.rigid, bs.rigid_c0, bs.rigid_dc,
-         bs.rigid_Q, bs.contact, bs.contact_factored, bs.factored_nodes, bs.contact_columns, bs.contact_column, bs.contact_column_dim,
+         bs.rigid_Q, bs.contact, bs.contact_factored, bs.status_factored, bs.max_reuse_error, bs.factored_nodes, bs.contact_columns, bs.contact_column, bs.contact_column_dim,
          bs.contact_columns_used, bs.r, bs.dx, bs.work);
     }
     long factorizations = s.factorizations();
@@ -935,9 +957,12 @@ class Simulation {
         auto& bs = systems_[model_.node(t.node).body];
         const Mat3 k = kf * (t.K + cf * t.C);
         const int local = local_index_[t.node];
-        if (!bs.contact.empty() && bs.contact.back().local == local && bs.contact.back().at_node() && t.at_node())
+        if (!bs.contact.empty() && bs.contact.back().local == local && bs.contact.back().at_node() && t.at_node()) {
           bs.contact.back().K += k;
-        else bs.contact.push_back({local, k, t.arm0});
+          bs.contact.back().status += t.status;
+        } else {
+          bs.contact.push_back({local, t.status, k, t.arm0});
+        }
       }
     }
     gather_rigid_groups();
@@ -1468,7 +1493,7 @@ class Simulation {
       // identity after the solve or, more than max_contact_updates of them, factorised now.
       std::vector<ContactChange> changes;
       if (!bs.needs_refresh && !sim.static_) {
-        changes = contact_changes(sim, b, Q * bs.Q_factor.transpose());
+        changes = contact_changes(sim, b, Q * bs.Q_factor.transpose(), bs.max_reuse_error);
         if (static_cast<int>(changes.size()) > max_contact_updates) bs.needs_refresh = true;
       }
       if (bs.needs_refresh) {
@@ -1525,6 +1550,11 @@ class Simulation {
     // (17-19 s CPU); 16 factorised 197 times against the 120 of the regular refreshes.
     static constexpr int max_contact_updates = 16;
     static constexpr double contact_change_tolerance = 0.3;
+    // A slipping node's tangential slope (friction's secant, mu N / |F*| of the stick spring's) falls as
+    // it speeds up, and the step's linearised friction force is that slope times the node's increment
+    // from the predictor: a slope left stale by 30 % (1 %) made a sliding frame slide 36 % (0.65 %)
+    // short, reused for 100 steps. So any change of it beyond round-off enters the step.
+    static constexpr double slip_slope_tolerance = 1e-9;
 
     struct ContactChange {
       int local;
@@ -1565,13 +1595,16 @@ class Simulation {
       std::vector<int> order;
       bs.contact_seen.assign(bs.nodes.size(), 0);
       bs.contact_now.resize(bs.nodes.size());
+      bs.status_now.resize(bs.nodes.size());
       for (const auto& c : bs.contact) {
         const Mat6 k = transform(node_term(sim, bs, c));
         if (bs.contact_seen[c.local]) {
           bs.contact_now[c.local] += k;
+          bs.status_now[c.local] += c.status;
         } else {
           bs.contact_seen[c.local] = 1;
           bs.contact_now[c.local] = k;
+          bs.status_now[c.local] = c.status;
           order.push_back(c.local);
         }
       }
@@ -1580,6 +1613,7 @@ class Simulation {
 
     static void factor_contact_terms(Simulation& sim, detail::BodySystem& bs) {
       bs.contact_factored.assign(bs.nodes.size(), Mat6::Zero());
+      bs.status_factored.assign(bs.nodes.size(), 0);
       bs.factored_nodes.clear();
       if (sim.static_) return;
       double* Kv = bs.K.valuePtr();
@@ -1590,6 +1624,7 @@ class Simulation {
         for (int i = 0; i < n; ++i)
           for (int j = 0; j < n; ++j) Kv[bs.node_slots[local][6 * i + j]] += k(i, j);
         bs.contact_factored[local] = k;
+        bs.status_factored[local] = bs.status_now[local];
       }
     }
     static Mat6 masked(const detail::BodySystem& bs, int local, Mat6 k) {
@@ -1598,21 +1633,62 @@ class Simulation {
       return k;
     }
 
-    // The nodes whose contact term moved by more than contact_change_tolerance since the
-    // factorisation, with the change (in the factor's frame: terms rotated by P).
-    static std::vector<ContactChange> contact_changes(Simulation& sim, int b, const Mat3& P) {
+    // The change d of a node's translational term along the contact's normal and in its tangent plane,
+    // each relative to that part of the term (now or as factorised, the larger; a part below 1e-3 of the
+    // other is noise). The normal: the direction of the column of the term's largest diagonal entry
+    // (exact for a term k_n n n^T + k_t (I - n n^T) up to k_t / k_n).
+    struct PartChange {
+      double normal = 0, tangential = 0;
+    };
+    static PartChange part_change(const Mat3& d, const Mat3& now, const Mat3& factored) {
+      const Mat3 sum = now + factored;
+      int j = 0;
+      sum.diagonal().cwiseAbs().maxCoeff(&j);
+      const Vec3 column = 0.5 * (sum.col(j) + sum.row(j).transpose());
+      if (column.norm() == 0) return {};
+      const Vec3 n = column.normalized();
+      const Mat3 T = Mat3::Identity() - n * n.transpose();
+      const double d_n = std::abs(n.dot(d * n)), b_n = std::max(std::abs(n.dot(now * n)), std::abs(n.dot(factored * n)));
+      const double d_t = (T * d * T).norm(), b_t = std::max((T * now * T).norm(), (T * factored * T).norm());
+      const double floor = std::max(1e-3 * std::max(b_n, b_t), 1e-300);
+      return {d_n / std::max(b_n, floor), d_t / std::max(b_t, floor)};
+    }
+    // Whether a node's status counts a slipping term (contact_status_code).
+    static bool slipping(int status) { return (status & 0xff) != 0; }
+
+    // The nodes whose contact changed regime since the factorisation (opened, closed, stuck, slipped,
+    // clamped: NodalContactTangent::status), whatever the size of the change; slipping nodes whose
+    // tangential slope moved (slip_slope_tolerance); and those whose term moved by more than
+    // contact_change_tolerance, as a whole or in its normal or tangential part (part_change); with the
+    // change (in the factor's frame: terms rotated by P). A regime change is tested on its own: from
+    // stick to slip a node's term keeps its normal part, which outweighs friction's slopes many times,
+    // so a norm of the whole term missed it and the factor's stale stick springs held a sliding frame
+    // (0.3 mm instead of 0.37 m, reused for 100 steps). The largest relative change left out is the
+    // factor-reuse error (factor_reuse_error()).
+    static std::vector<ContactChange> contact_changes(Simulation& sim, int b, const Mat3& P, double& left_out) {
       auto& bs = sim.systems_[b];
       if (bs.contact_factored.size() != bs.nodes.size()) bs.contact_factored.assign(bs.nodes.size(), Mat6::Zero());
+      if (bs.status_factored.size() != bs.nodes.size()) bs.status_factored.assign(bs.nodes.size(), 0);
       std::vector<ContactChange> changes;
-      const auto consider = [&](int local, const Mat6& now) {
-        const Mat6 d = now - bs.contact_factored[local];
-        if (term_norm(d) > contact_change_tolerance * std::max(term_norm(now), term_norm(bs.contact_factored[local])))
+      const auto consider = [&](int local, const Mat6& now, int status) {
+        const Mat6& factored = bs.contact_factored[local];
+        const Mat6 d = now - factored;
+        const double change = term_norm(d);
+        if (change == 0) return;
+        const PartChange part =
+            part_change(d.topLeftCorner<3, 3>(), now.topLeftCorner<3, 3>(), factored.topLeftCorner<3, 3>());
+        const double relative = std::max({change / std::max(term_norm(now), term_norm(factored)), part.normal,
+                                          slipping(status) ? 0.0 : part.tangential});
+        const bool slip_slope_moved = slipping(status) && part.tangential > slip_slope_tolerance;
+        if (status != bs.status_factored[local] || slip_slope_moved || relative > contact_change_tolerance)
           changes.push_back({local, d, translational(d) ? 3 : 6});
+        else
+          left_out = std::max(left_out, relative);
       };
       for (int local : sum_node_terms(sim, bs, [&](const Mat6& k) { return rotated(P, k); }))
-        consider(local, masked(bs, local, bs.contact_now[local]));
+        consider(local, masked(bs, local, bs.contact_now[local]), bs.status_now[local]);
       for (int local : bs.factored_nodes)
-        if (!bs.contact_seen[local]) consider(local, Mat6::Zero());
+        if (!bs.contact_seen[local]) consider(local, Mat6::Zero(), 0);
       return changes;
     }
     // Puts the changes on the solution bs.dx by the Woodbury identity. False when a solve fails.

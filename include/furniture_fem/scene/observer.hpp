@@ -52,6 +52,7 @@ class SimulationView {
   // the floor, -2: a wall).
   virtual const std::vector<PairForce>& pair_forces() const = 0;
   virtual long factorizations() const = 0;
+  virtual double factor_reuse_error() const = 0;  // Simulation::factor_reuse_error
   virtual const StepTimings& timings() const = 0;
   virtual std::string integrator_name() const = 0;
   virtual std::string_view solver_name() const = 0;

@@ -155,8 +155,16 @@ inline nlohmann::json final_state_json(const std::vector<ItemFinalState>& items)
                  {"max_tilt_deg", s.max_tilt_deg},
                  {"lift_m", s.lift},
                  {"resting_on", s.resting_on},
-                 {"cog_displacement_m", {s.cog_displacement.x(), s.cog_displacement.y(), s.cog_displacement.z()}}});
+                 {"cog_displacement_m", {s.cog_displacement.x(), s.cog_displacement.y(), s.cog_displacement.z()}},
+                 {"max_node_speed_m_s", s.max_node_speed}});
   return a;
+}
+
+// The largest nodal speed at the end over every item (m/s): a scene at rest shows it is at rest.
+inline double max_node_speed(const std::vector<ItemFinalState>& items) {
+  double v = 0;
+  for (const auto& s : items) v = std::max(v, s.max_node_speed);
+  return v;
 }
 
 inline nlohmann::json section_peaks_json(const std::vector<SectionForcePeak>& peaks) {
@@ -249,14 +257,7 @@ class FinalStates : public RunObserver {
     st.name = it.name;
     const Mat3 Q = detail::body_rotation_of(sim, model, it.body);
     const Vec3 cog0 = model.body_centre_of_gravity(it.body);
-    Vec3 cog = Vec3::Zero();
-    double m = 0;
-    for (int e : model.body(it.body).elements) {
-      const double me = model.elements()[e].line_mass * model.element_length(e);
-      cog += me * 0.5 * (sim.position(model.elements()[e].n1) + sim.position(model.elements()[e].n2));
-      m += me;
-    }
-    cog /= m;
+    const Vec3 cog = model.body_centre_of_gravity(it.body, [&sim](int n) { return sim.position(n); });
     st.cog_displacement = cog - cog0;
     st.slide = std::hypot(st.cog_displacement.x(), st.cog_displacement.y());
     st.tilt_deg = detail::tilt_of(Q);
@@ -265,6 +266,7 @@ class FinalStates : public RunObserver {
     for (int n : model.body(it.body).nodes) {
       low = std::min(low, sim.position(n).z());
       low0 = std::min(low0, model.node(n).X.z());
+      st.max_node_speed = std::max(st.max_node_speed, sim.velocity(n).head<3>().norm());
     }
     st.lift = low - low0;
     // It rests (or leans) on the item that pushes it up the most (more than 1 N on average over the
@@ -697,6 +699,8 @@ class SummaryFile : public RunObserver {
         {"integrator", sim.integrator_name()},
         {"linear_solver", std::string(sim.solver_name())},
         {"factorizations", sum.factorizations},
+        {"factor_reuse_error", sum.factor_reuse_error},
+        {"max_node_speed_m_s", detail::max_node_speed(sum.items)},
         {"rigid_bodies", rigid},
         // Wall seconds: contact, the sweep over the bodies, the rest, total; inside the sweep, thread
         // seconds summed over the bodies (Simulation's StepTimings): solve, factorize, elements.

@@ -102,7 +102,8 @@ struct ItemFinalState {
   double max_tilt_deg = 0;    // during the run
   double lift = 0;            // height of the lowest node above the floor contact onset (m)
   std::string resting_on;     // the item it leans or rests on, if any
-  Vec3 cog_displacement = Vec3::Zero();
+  Vec3 cog_displacement = Vec3::Zero();  // of its centre of gravity, every mass it carries (m)
+  double max_node_speed = 0;  // the largest speed of any of its nodes at the end, relative to the table (m/s)
 };
 
 // The extremes of one requested sectional force over every step of the run (N, N m; times in s).
@@ -123,6 +124,10 @@ struct RunSummary {
   double energy_imbalance = 0;        // |imbalance| / scale of the ledger at the end
   double max_energy_imbalance = 0;    // the largest during the run (at the history rows)
   long factorizations = 0;
+  // The largest change of a contact term, relative to the term, that a reused factorisation left out of
+  // a solve (Simulation::factor_reuse_error; at most 0.3, a change of contact regime never): 0 when
+  // every flexible body was refactorised at every step or had no contact.
+  double factor_reuse_error = 0;
   int elements = 0, nodes = 0, bodies = 0;
   std::vector<ItemFinalState> items;
   std::vector<SectionForcePeak> section_peaks;  // one per outputs.sectional_forces request

@@ -244,6 +244,7 @@ class LastStepView final : public SimulationView {
   EnergyLedger energy() const override { return energy_; }
   const std::vector<PairForce>& pair_forces() const override { return pair_forces_; }
   long factorizations() const override { return sim_.factorizations(); }
+  double factor_reuse_error() const override { return sim_.factor_reuse_error(); }
   const StepTimings& timings() const override { return sim_.timings(); }
   std::string integrator_name() const override { return sim_.integrator_name(); }
   std::string_view solver_name() const override { return sim_.solver_name(); }
@@ -407,6 +408,7 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
   if (diverged) sum.t_diverged = last.time() + spec.dt;
   sum.steps = end_state.steps();
   sum.factorizations = sim.factorizations();
+  sum.factor_reuse_error = sim.factor_reuse_error();
   sum.wall_seconds = wall_now();
   const RunView end_view{run.spec,      run.model,   run.items, run.motion,
                          run.rigid_bodies, run.requests, end_state, run.options,

@@ -56,6 +56,7 @@ class SimulationViewOf final : public SteppedSimulation {
   EnergyLedger energy() const override { return sim_.energy(); }
   const std::vector<PairForce>& pair_forces() const override { return sim_.contact_model().pair_forces(); }
   long factorizations() const override { return sim_.factorizations(); }
+  double factor_reuse_error() const override { return sim_.factor_reuse_error(); }
   const StepTimings& timings() const override { return sim_.timings(); }
   std::string integrator_name() const override { return sim_.integrator().name(); }
   std::string_view solver_name() const override { return detail::policies_of<Sim>::solver::name; }

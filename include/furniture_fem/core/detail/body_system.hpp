@@ -92,15 +92,21 @@ struct BodySystem {
   struct ContactTerm {
     static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
     int local;
+    int status = 0;  // NodalContactTangent::status
     Mat3 K;
     Vec3 arm0 = Vec3::Zero();  // a contact off the node: the point's offset (NodalContactTangent)
     bool at_node() const { return arm0.x() == 0 && arm0.y() == 0 && arm0.z() == 0; }
   };
   std::vector<ContactTerm> contact;
   std::vector<Mat6> contact_factored;
+  std::vector<int> status_factored;  // per local node: its contact status as factorised
+  // The largest relative change of a node's contact term that a reused factorisation left out of a
+  // solve (below FlexibleBody::contact_change_tolerance, in the same regime) since the start.
+  double max_reuse_error = 0;
   std::vector<int> factored_nodes;
   std::vector<char> contact_seen;  // scratch, per local node
   std::vector<Mat6> contact_now;   // scratch, per local node
+  std::vector<int> status_now;     // scratch, per local node
   Eigen::MatrixXd contact_columns;
   std::vector<int> contact_column;      // per local node; -1: not computed
   std::vector<int> contact_column_dim;  // per local node: 3 (translations) or 6 columns computed
