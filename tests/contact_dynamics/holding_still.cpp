@@ -334,11 +334,11 @@ TEST_CASE("a frame's reused factorisation slides it as one refactorised every st
   // A flexible frame (the small box, 50 mm elements, stiff law, mu 0.3) settles for 0.3 s, then the
   // table accelerates at 0.6 g along +X: its friction goes from stick to slip on every bottom node while
   // the normal part of each node's contact term hardly changes. Between refreshes a node's term entered
-  // the Woodbury update only when the whole term changed by 30 % of its norm, so the slip went unseen and
-  // the stale stick springs of the factorisation held the frame (before the fix, 0.5 s: BEFORE10 m at 10
-  // steps, BEFORE100 m at 100, against 0.367 m refactorised every step). Now a change of stick/slip or
-  // contact status always enters the step (with that alone: 0.284 m and 0.011 m), and so does any change
-  // of a slipping node's tangential slope (a 30 % tolerance on it: 0.328 m and 0.235 m). Closed form:
+  // the Woodbury update only when the whole term changed by 30 % of its norm; a slipping node's slope
+  // (friction's secant, falling as it speeds up) never did, and the stale slopes held the frame back
+  // (ed5bc2d, 0.5 s: 0.284 m at 10 steps, 0.011 m at 100, against 0.367 m refactorised every step). Now
+  // a change of contact regime always enters the step (with that alone: the same numbers), and so does
+  // any change of a slipping node's tangential slope (a 30 % tolerance on it: 0.328 m and 0.235 m). Closed form:
   // x = (a - mu g) t^2 / 2 = 0.3677 m at 0.5 s (the FE frame's sway adds little); measured 0.36747 m at
   // every interval. Bounds: 2 % against the closed form, 0.5 % between the intervals (issue 52).
   const double mu = 0.3, a = 0.6 * g0, T = 0.5;

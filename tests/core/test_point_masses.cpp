@@ -98,6 +98,26 @@ TEST_CASE("a point mass adds to the body's mass, centre of gravity and inertia",
   CHECK(sim.node_rotary_inertia(h.hub)(2, 2) < h.J.z() + 1e-6);
 }
 
+TEST_CASE("the centre of gravity at moved node positions weighs the point mass too", "[model][point mass]") {
+  // Model::body_centre_of_gravity(b, position): the same masses as at the start, the nodes where
+  // position(n) puts them. A rigid motion x -> Q (x - p) + p + c moves the centre of gravity the same way
+  // (exact, to rounding); a positions function that ignored the hub mass would put it near the arms'
+  // centroid, 0.1 m off (issue 52: a block at rest reported -0.116 m).
+  Hub h;
+  const Vec3 cog0 = h.model.body_centre_of_gravity(h.body);
+  CHECK((h.model.body_centre_of_gravity(h.body, [&](int n) { return h.model.node(n).X; }) - cog0).norm() < 1e-15);
+  const Mat3 Q = Eigen::AngleAxisd(1.1, Vec3(1, -2, 0.5).normalized()).toRotationMatrix();
+  const Vec3 p(0.3, 0.1, 0.0), c(-0.7, 2.0, 0.25);
+  const auto moved = [&](int n) -> Vec3 { return Q * (h.model.node(n).X - p) + p + c; };
+  CHECK((h.model.body_centre_of_gravity(h.body, moved) - (Q * (cog0 - p) + p + c)).norm() < 1e-13);
+  // Only the hub node moved: the point mass and half of each arm's first element (0.1 m at 1 g/m, its
+  // mass at its midpoint) follow it, the rest stays.
+  const Vec3 lift(0, 0, 0.01);
+  const auto hub_up = [&](int n) -> Vec3 { return h.model.node(n).X + (n == h.hub ? lift : Vec3::Zero()); };
+  const double share = (Hub::M + 3 * 0.5 * 0.1 * 1e-3) / h.model.body_mass(h.body);
+  CHECK((h.model.body_centre_of_gravity(h.body, hub_up) - (cog0 + share * lift)).norm() < 1e-14);
+}
+
 TEST_CASE("a rigid body with a point mass falls freely and turns under a moment as in closed form",
           "[dynamics][point mass]") {
   // Free fall: every Newmark member integrates a constant acceleration exactly (test_dynamics.cpp);

@@ -1662,9 +1662,9 @@ class Simulation {
     // contact_change_tolerance, as a whole or in its normal or tangential part (part_change); with the
     // change (in the factor's frame: terms rotated by P). A regime change is tested on its own: from
     // stick to slip a node's term keeps its normal part, which outweighs friction's slopes many times,
-    // so a norm of the whole term missed it and the factor's stale stick springs held a sliding frame
-    // (0.3 mm instead of 0.37 m, reused for 100 steps). The largest relative change left out is the
-    // factor-reuse error (factor_reuse_error()).
+    // so a norm of the whole term can miss it. The slipping slopes were what it missed: a sliding frame
+    // reused for 100 steps slid 0.011 m instead of 0.367 m (docs/contact/implicit_contact.md). The
+    // largest relative change left out is the factor-reuse error (factor_reuse_error()).
     static std::vector<ContactChange> contact_changes(Simulation& sim, int b, const Mat3& P, double& left_out) {
       auto& bs = sim.systems_[b];
       if (bs.contact_factored.size() != bs.nodes.size()) bs.contact_factored.assign(bs.nodes.size(), Mat6::Zero());
