@@ -33,10 +33,13 @@ CASE_TITLE = {"kobe50_1d": "(i) 50 % JMA-Kobe, 1-D", "kobe100_1d": "(ii) 100 % J
               "kobe100_3d": "(iii) 100 % JMA-Kobe, 3-D"}
 FIDELITIES = ["full", "auto", "rigid"]
 LAWS = ["paper", "stiff"]
-# Keys of the scene's contact object kept for the stiff law (scene_file.md, `contact`): the law and the
-# friction settings. The paper law's penalty keys are errors for stiff; `implicit` is left to stiff's
-# own default (every item's floor and wall contact inside the implicit step).
-STIFF_TOP_KEYS = {"law", "stick_length", "velocity_regularisation"}
+# Keys of the scene's contact object kept for the stiff law (scene_file.md, `contact`): the law, the
+# friction settings and how rigid pairs meet (the scenes' `members`, which the stiff columns have always
+# used: the default was `members` until 2026-12-04). The paper law's penalty keys are errors for stiff;
+# `implicit` is left to the default (every item's floor and wall contact inside the implicit step), and
+# so, as before, is `plane_contact_at` (the surfaces: the stiff columns run there, not at the scenes'
+# centre lines; noted in results/contact_comparison.md).
+STIFF_TOP_KEYS = {"law", "stick_length", "velocity_regularisation", "rigid_pairs"}
 STIFF_OVERRIDE_KEYS = {"mu", "mu_long"}
 
 

@@ -87,8 +87,9 @@ TEST_CASE("every contact law's name goes through the reader and the writer", "[s
     const json written = to_json(s);
     CHECK(written["contact"]["law"] == name);
     CHECK(to_json(parse_scene_json(written, "laws.json")) == written);
-    // The law's default applies to a scene file and to a spec built in C++ alike (nothing set).
-    const ImplicitContact expected = R::default_implicit.value_or(ImplicitContact::rigid);
+    // The law's default applies to a scene file and to a spec built in C++ alike (nothing set): every
+    // item inside the step unless the law says otherwise (issue 52).
+    const ImplicitContact expected = R::default_implicit.value_or(ImplicitContact::all);
     CHECK(implicit_contact(s.contact) == expected);
     SceneSpec in_cpp;
     in_cpp.contact.law = law_kind<R>;

@@ -387,6 +387,12 @@ TEST_CASE("contact.plane_contact_at: read, written back, named errors", "[scene]
   CHECK(s.contact.plane_contact_at == PlaneContactAt::centre_lines);
   CHECK(parse_scene_json(to_json(s), "again.json").contact.plane_contact_at == PlaneContactAt::centre_lines);
   CHECK(configuration(3).contact.plane_contact_at == PlaneContactAt::centre_lines);
+  // The paper's reproductions keep its explicit contact for FE items and its rigid pairs by members,
+  // against the scene defaults (issue 52): written out, a scene of theirs runs as the paper did.
+  CHECK(configuration(3).contact.implicit == ImplicitContact::rigid);
+  CHECK(configuration(3).contact.rigid_pairs == RigidPairContact::members);
+  CHECK(implicit_contact(SceneSpec{}.contact) == ImplicitContact::all);
+  CHECK(SceneSpec{}.contact.rigid_pairs == RigidPairContact::hulls);
   j["contact"]["plane_contact_at"] = "surface";
   CHECK_THAT(read_error(j), Contains("contact.plane_contact_at") && Contains("surfaces"));
   // Flexible items touch at their surfaces too (their nodes' cubes): a scene of full items is read.

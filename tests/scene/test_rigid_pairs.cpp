@@ -137,9 +137,11 @@ TEST_CASE("contact.rigid_pairs: read, written back, changes the result, named er
   const SceneSpec s = parse_scene_json(j, "hulls.json");
   CHECK(s.contact.rigid_pairs == RigidPairContact::hulls);
   CHECK(parse_scene_json(to_json(s), "again.json").contact.rigid_pairs == RigidPairContact::hulls);
-  json members = j;
-  members["contact"].erase("rigid_pairs");
-  CHECK(parse_scene_json(members, "default.json").contact.rigid_pairs == RigidPairContact::members);
+  json unset = j, members = j;
+  unset["contact"].erase("rigid_pairs");
+  CHECK(parse_scene_json(unset, "default.json").contact.rigid_pairs == RigidPairContact::hulls);  // issue 52
+  members["contact"]["rigid_pairs"] = "members";
+  CHECK(parse_scene_json(members, "members.json").contact.rigid_pairs == RigidPairContact::members);
   // The same scene by members and by hulls: other contacts, another slide (both near the closed form).
   Stack<SpringDashpotLaw> by_hulls(j), by_members(stacked_scene({{0.2, 0.0}, {0.201, 3.0}, {3.0, 3.0}}, 0.2, "stiff",
                                                                 "surfaces", "members"));

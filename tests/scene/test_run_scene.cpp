@@ -459,7 +459,7 @@ TEST_CASE("stiff law: stacked cabinets stand on each other, rigid and full, with
     j["items"][0]["fidelity"] = fidelity;
     j["outputs"]["folder"] = dir + "/out";
     const SceneSpec spec = parse_scene(write_json(dir + "/scene.json", j));
-    CHECK(implicit_contact(spec.contact) == ImplicitContact::all);  // stiff's default
+    CHECK(implicit_contact(spec.contact) == ImplicitContact::all);  // the default
     const RunSummary sum = run_scene(spec, quiet(dir + "/out"));
     INFO(fidelity << ": " << sum.status << " " << sum.diagnosis);
     REQUIRE(sum.status == "completed");

@@ -89,10 +89,11 @@ inline const SceneLawInfo& scene_law(ContactLawKind kind) {
 }
 
 // Which items' floor and wall contact is inside the implicit step: the spec's choice, else its law's
-// default, else rigid items only.
+// default, else every item's (issue 52: explicit, a flexible item's contact creeps at rest; the paper's
+// reproductions, configuration(k), name `rigid`, the paper's explicit treatment of its FE items).
 inline ImplicitContact implicit_contact(const ContactSpec& c) {
   if (c.implicit) return *c.implicit;
-  return scene_law(c.law).default_implicit.value_or(ImplicitContact::rigid);
+  return scene_law(c.law).default_implicit.value_or(ImplicitContact::all);
 }
 
 // Calls f.template operator()<R>() with the record of `kind`; false when the list has no such law.

@@ -78,7 +78,7 @@ struct SceneLawDefaults {
   // Non-empty: the law has a tangential spring of its own and does not read contact.stick_length (the
   // reason, for the error naming the key).
   static constexpr std::string_view own_stick_spring{};
-  // The `implicit` a scene gets when it names the law and no `implicit`.
+  // The `implicit` a scene gets when it names the law and no `implicit` (unset: `all`).
   static constexpr std::optional<ImplicitContact> default_implicit{};
   // Item parameters (items[i].params) the law sets itself, and why: given, they are an error.
   static constexpr std::array<std::string_view, 0> unused_item_parameters{};

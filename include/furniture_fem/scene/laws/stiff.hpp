@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <array>
 #include <limits>
-#include <optional>
 #include <string_view>
 
 #include "../../contact/stiff_contact.hpp"
@@ -17,8 +16,6 @@ struct StiffSceneLaw : SceneLawDefaults {
   using law = SpringDashpotLaw;
   static constexpr bool cg_allowed = false;
   static constexpr std::array<std::string_view, 2> parameters{"mu", "mu_long"};
-  // Built for contact inside the implicit step: explicit, its spring is past a frame node's stable step at 1 ms.
-  static constexpr std::optional<ImplicitContact> default_implicit = ImplicitContact::all;
   static constexpr std::array<std::string_view, 3> unused_item_parameters{"alpha_kgf", "dc_kgf", "alpha_scale"};
   static constexpr std::string_view unused_item_parameters_why =
       "it sets each item's stiffness and damping from its mass and inertia; docs/contact/contact.md";
