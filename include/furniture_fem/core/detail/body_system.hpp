@@ -103,6 +103,9 @@ struct BodySystem {
   // The largest relative change of a node's contact term that a reused factorisation left out of a
   // solve (below FlexibleBody::contact_change_tolerance, in the same regime) since the start.
   double max_reuse_error = 0;
+  // Conjugate-gradient solves of contact changes refined on a reused factorisation, and the steps whose
+  // refinement did not converge (their changes then went on the Woodbury update or a refactorisation).
+  long refinement_solves = 0, refinement_fallbacks = 0;
   std::vector<int> factored_nodes;
   std::vector<char> contact_seen;  // scratch, per local node
   std::vector<Mat6> contact_now;   // scratch, per local node
