@@ -18,6 +18,8 @@
 #
 #   python3 scripts/full_vs_rigid.py build/examples/furniture_quake [--jobs 2] [--kinds locker,table]
 #       [--checks rest,ramp,sudden,pulse,slide] [--out docs/contact/full_vs_rigid.md]
+#   python3 scripts/full_vs_rigid.py --table-from docs/contact/full_vs_rigid.csv --checks rest,ramp,slide
+#       (the table again from a run's CSV, without running)
 #
 # Writes the table (markdown, and the CSV beside it); scenes and results in $FFEM_MATRIX_OUT (default
 # /tmp/ffem_matrix). The block (rigid only) carries its closed forms: g b/h for ramp and sudden.
@@ -202,7 +204,8 @@ def table(rows, checks):
                     cells.append(" / ".join(f"{fmt(r.get(f'slide{e}'), '.4f')}{rel(r.get(f'slide{e}'), r[f'slide{e}_exact'])}" for e in (2, 3))
                                  + f" ({r['slide2_exact']:.4f} / {r['slide3_exact']:.4f})")
                 else:
-                    cells.append(fmt(r.get(c)) + rel(r.get(c), ref.get(c)))
+                    key = {'ramp': 'ramp_onset'}.get(c, c)
+                    cells.append(fmt(r.get(key)) + rel(r.get(key), ref.get(key)))
             lines.append(f"| {r['config']} | " + " | ".join(cells) + " |")
         if kind == 'block':
             D, ex = KINDS['block']
@@ -212,12 +215,24 @@ def table(rows, checks):
 
 if __name__ == '__main__':
     ap = argparse.ArgumentParser()
-    ap.add_argument('binary')
+    ap.add_argument('binary', nargs='?')
+    ap.add_argument('--table-from', help="a run's CSV: write its table again, without running")
     ap.add_argument('--jobs', type=int, default=2)
     ap.add_argument('--kinds', default=','.join(KINDS))
     ap.add_argument('--checks', default='rest,ramp,sudden,pulse,slide')
     ap.add_argument('--out', default='docs/contact/full_vs_rigid.md')
     a = ap.parse_args()
+    if a.table_from:
+        def number(v):
+            try:
+                return float(v)
+            except ValueError:
+                return v if v != '' else None
+        rows = [{k: number(v) for k, v in r.items()} for r in csv.DictReader(open(a.table_from))]
+        sys.stdout.write(table(rows, a.checks.split(',')))
+        sys.exit(0)
+    if not a.binary:
+        ap.error('the furniture_quake binary is needed (or --table-from CSV)')
     sys_binary = [os.path.abspath(a.binary)]
     os.makedirs(OUT, exist_ok=True)
     checks = a.checks.split(',')
