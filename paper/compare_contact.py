@@ -100,6 +100,34 @@ def cell(r, summ):
     return "%s, %.3f, %.1f" % (r["state"], r["slide_m"], r["tilt_deg"])
 
 
+def run_variant(a, name, scene):
+    """Writes the scene to a.scratch/name.json and runs it into a.scratch/name (unless a.skip_existing and
+    it has a summary.json): its summary and final states, or a failed status and none."""
+    spath, odir = os.path.join(a.scratch, name + ".json"), os.path.join(a.scratch, name)
+    with open(spath, "w") as f:
+        json.dump(scene, f, indent=2)
+    summ = os.path.join(odir, "summary.json")
+    if not (a.skip_existing and os.path.isfile(summ)):
+        os.makedirs(odir, exist_ok=True)
+        # --overwrite: odir already holds this script's stderr.log (kept by the program).
+        cmd = ["nice", "-n", str(a.nice), a.furniture_quake, spath, "--out", odir, "--quiet", "--overwrite"]
+        if getattr(a, "duration", None):
+            cmd += ["--duration", str(a.duration)]
+        t0 = time.time()
+        with open(os.path.join(odir, "stderr.log"), "w") as err:
+            rc = subprocess.call(cmd, stdout=subprocess.DEVNULL, stderr=err)
+        print("== %s: exit %d, %.1f s" % (name, rc, time.time() - t0), flush=True)
+    summary, final = {"status": "failed (no summary.json)"}, []
+    if os.path.isfile(summ):
+        with open(summ) as f:
+            summary = json.load(f)
+    fpath = os.path.join(odir, "final_state.json")
+    if os.path.isfile(fpath):
+        with open(fpath) as f:
+            final = json.load(f)
+    return summary, final
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--furniture-quake", default=os.environ.get("FURNITURE_QUAKE") or default_quake())
@@ -144,29 +172,7 @@ def main():
                 if (fid, law) in not_run:
                     continue
                 name = "config3_%s_%s_%s%s" % (c, fid, law, suffix)
-                spath = os.path.join(a.scratch, name + ".json")
-                odir = os.path.join(a.scratch, name)
-                with open(spath, "w") as f:
-                    json.dump(variant(scene, scene_dir, fid, law, a.plane_contact_at), f, indent=2)
-                summ = os.path.join(odir, "summary.json")
-                if not (a.skip_existing and os.path.isfile(summ)):
-                    os.makedirs(odir, exist_ok=True)
-                    # --overwrite: odir already holds this script's stderr.log (kept by the program).
-                    cmd = ["nice", "-n", str(a.nice), a.furniture_quake, spath, "--out", odir, "--quiet", "--overwrite"]
-                    if a.duration:
-                        cmd += ["--duration", str(a.duration)]
-                    t0 = time.time()
-                    with open(os.path.join(odir, "stderr.log"), "w") as err:
-                        rc = subprocess.call(cmd, stdout=subprocess.DEVNULL, stderr=err)
-                    print("== %s: exit %d, %.1f s" % (name, rc, time.time() - t0), flush=True)
-                summary, final = {"status": "failed (no summary.json)"}, []
-                if os.path.isfile(summ):
-                    with open(summ) as f:
-                        summary = json.load(f)
-                fpath = os.path.join(odir, "final_state.json")
-                if os.path.isfile(fpath):
-                    with open(fpath) as f:
-                        final = json.load(f)
+                summary, final = run_variant(a, name, variant(scene, scene_dir, fid, law, a.plane_contact_at))
                 runs.append((c, fid, law, summary, final))
 
     os.makedirs(a.results, exist_ok=True)

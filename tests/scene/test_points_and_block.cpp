@@ -13,6 +13,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <string>
 
 using namespace furniture_fem;
@@ -469,5 +470,52 @@ TEST_CASE("a block's final centre of gravity weighs its point mass: at rest, sli
     CHECK(st.cog_displacement.x() == Approx(-0.1 - 0.25).margin(0.02));
     CHECK(std::abs(st.cog_displacement.y()) < 0.01);
     CHECK(st.slide == Approx(std::hypot(st.cog_displacement.x(), st.cog_displacement.y())).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("integrator.impact_substeps: read, written back, counted in the summary, named errors",
+          "[scene][block][points][impact]") {
+  // The overturned block above (W 0.2, H 0.6, h 0.25, mu 2, 1.5 g b/h held) lands on its side at about
+  // 2 m/s: with the default (32) the steps of the landing are divided (ceil(v dt / 0.5 mm) sub-steps
+  // each, at most 32), with 1 none is, as the paper's code. The summary counts them.
+  const double a = 1.5 * g * 0.1 / 0.25;
+  json j = block_scene({{"source", "points"}, {"x", {{0.2, 0.0}, {0.201, a}, {5.0, a}}}}, 2.0);
+  j["items"][0]["params"]["width"] = 0.2;
+  j["items"][0]["params"]["height"] = 0.6;
+  j["items"][0]["params"]["cog_h"] = 0.25;
+  j["contact"] = {{"law", "stiff"}};
+  j["duration"] = 2.5;
+  RunOptions o;
+  o.write_files = false;
+  o.progress = false;
+  const auto run = [&](std::optional<int> substeps) {
+    json k = j;
+    if (substeps) k["integrator"] = {{"impact_substeps", *substeps}};
+    const SceneSpec spec = parse_scene_json(k, "impact.json");
+    CHECK(spec.integrator.impact_substeps == substeps.value_or(32));
+    CHECK(parse_scene_json(to_json(spec), "again.json").integrator.impact_substeps == spec.integrator.impact_substeps);
+    const RunSummary s = run_scene(spec, o);
+    REQUIRE(s.status == "completed");
+    CHECK(s.items.at(0).state == "overturned");
+    return s;
+  };
+  const RunSummary divided = run(std::nullopt), undivided = run(1);
+  INFO("divided: " << divided.impact_steps << " steps into " << divided.impact_substeps << " sub-steps, of "
+                   << divided.steps);
+  CHECK(divided.impact_steps > 0);
+  CHECK(divided.impact_substeps >= 2 * divided.impact_steps);
+  CHECK(divided.impact_substeps <= 32 * divided.impact_steps);
+  CHECK(divided.steps == undivided.steps);  // the observers see the scene's steps either way
+  CHECK(undivided.impact_steps == 0);
+  CHECK(undivided.impact_substeps == 0);
+  CHECK(divided.items[0].cog_displacement != undivided.items[0].cog_displacement);
+
+  for (const auto& [value, expect] : {std::pair{json(0), "must lie in [1, 1000]"}, std::pair{json(1001), "[1, 1000]"},
+                                      std::pair{json(2.5), "expected an integer"}, std::pair{json("8"), "expected an integer"}}) {
+    json bad = j;
+    bad["integrator"] = {{"impact_substeps", value}};
+    const std::string message = read_error(bad);
+    INFO(message);
+    CHECK_THAT(message, Contains("integrator.impact_substeps") && Contains(expect));
   }
 }

@@ -239,6 +239,25 @@ class RoomContact {
     }
   }
 
+  // The fastest speed (m/s) at which a node or a support point closes on a floor or wall that it
+  // touches, or would reach within view.dt at that speed: what the simulation's impact sub-steps
+  // resolve (SimulationOptions::max_impact_substeps). Item-item contacts are not looked at.
+  double fastest_closing(const ContactView& view) const {
+    double fastest = 0;
+    const auto closing = [&](const Vec3& x, const Vec3& v, double gap_offset) {
+      for (const RigidPlane& pl : planes_) {
+        const double speed = -v.dot(pl.normal);
+        if (speed > fastest && (x - pl.point).dot(pl.normal) - gap_offset <= speed * view.dt &&
+            pl.contains_projection(x))
+          fastest = speed;
+      }
+    };
+    for (int n : plane_nodes_) closing(view.x[n], view.v.template segment<3>(6 * n), half_width_[n]);
+    for (const auto& pt : surface_points_)
+      closing(point_now(view, point_index(pt)), point_velocity(view, pt.node, (*view.rotations)[pt.node] * pt.arm0), 0);
+    return fastest;
+  }
+
   // The linearisations of the floor and wall forces of the last add_forces (none unless implicit).
   const std::vector<NodalContactTangent>& nodal_tangents() const { return tangents_; }
   // The linearisations of the item-item pairs between two rigid implicit bodies (the simulation

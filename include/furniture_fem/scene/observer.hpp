@@ -53,6 +53,9 @@ class SimulationView {
   virtual const std::vector<PairForce>& pair_forces() const = 0;
   virtual long factorizations() const = 0;
   virtual double factor_reuse_error() const = 0;  // Simulation::factor_reuse_error
+  // Steps divided for impacts, and the sub-steps they took (Simulation::impact_steps, impact_substeps).
+  virtual long impact_steps() const = 0;
+  virtual long impact_substeps() const = 0;
   virtual const StepTimings& timings() const = 0;
   virtual std::string integrator_name() const = 0;
   virtual std::string_view solver_name() const = 0;

@@ -700,6 +700,8 @@ class SummaryFile : public RunObserver {
         {"linear_solver", std::string(sim.solver_name())},
         {"factorizations", sum.factorizations},
         {"factor_reuse_error", sum.factor_reuse_error},
+        {"impact_steps", sum.impact_steps},
+        {"impact_substeps", sum.impact_substeps},
         {"max_node_speed_m_s", detail::max_node_speed(sum.items)},
         {"rigid_bodies", rigid},
         // Wall seconds: contact, the sweep over the bodies, the rest, total; inside the sweep, thread

@@ -128,6 +128,9 @@ struct RunSummary {
   // a solve (Simulation::factor_reuse_error; at most 0.3, a change of contact regime never): 0 when
   // every flexible body was refactorised at every step or had no contact.
   double factor_reuse_error = 0;
+  // Steps divided into sub-steps for an impact, and how many sub-steps they took in all
+  // (integrator.impact_substeps).
+  long impact_steps = 0, impact_substeps = 0;
   int elements = 0, nodes = 0, bodies = 0;
   std::vector<ItemFinalState> items;
   std::vector<SectionForcePeak> section_peaks;  // one per outputs.sectional_forces request

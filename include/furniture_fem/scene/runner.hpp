@@ -245,6 +245,8 @@ class LastStepView final : public SimulationView {
   const std::vector<PairForce>& pair_forces() const override { return pair_forces_; }
   long factorizations() const override { return sim_.factorizations(); }
   double factor_reuse_error() const override { return sim_.factor_reuse_error(); }
+  long impact_steps() const override { return sim_.impact_steps(); }
+  long impact_substeps() const override { return sim_.impact_substeps(); }
   const StepTimings& timings() const override { return sim_.timings(); }
   std::string integrator_name() const override { return sim_.integrator_name(); }
   std::string_view solver_name() const override { return sim_.solver_name(); }
@@ -409,6 +411,8 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
   sum.steps = end_state.steps();
   sum.factorizations = sim.factorizations();
   sum.factor_reuse_error = sim.factor_reuse_error();
+  sum.impact_steps = sim.impact_steps();
+  sum.impact_substeps = sim.impact_substeps();
   sum.wall_seconds = wall_now();
   const RunView end_view{run.spec,      run.model,   run.items, run.motion,
                          run.rigid_bodies, run.requests, end_state, run.options,

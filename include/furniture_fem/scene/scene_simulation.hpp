@@ -504,6 +504,7 @@ struct SceneSimulation {
     so.dt = spec.dt;
     so.refresh_interval_steps = refresh_interval_steps > 0 ? refresh_interval_steps : spec.refresh_interval_steps();
     so.threads = threads;
+    so.max_impact_substeps = spec.integrator.impact_substeps;
     sim = std::make_unique<Sim>(*model, integrator, so, std::move(contact));
     const TableMotion* m = &motion;
     sim->set_table_acceleration([m](double t) { return m->at(t); });

@@ -178,6 +178,11 @@ struct IntegratorSpec {
   IntegratorKind scheme = IntegratorKind::paper_newmark;
   double rho_inf = 0.5;                 // spectral radius at infinity (generalized-alpha)
   bool iterate_to_equilibrium = false;  // false: carry the unbalanced force over, as the paper's code
+  // A step in which an item closes on the floor or a wall faster than 0.5 mm a step is divided into
+  // up to this many sub-steps (SimulationOptions::max_impact_substeps); 1: never, as the paper's code.
+  // 32: a 5 m/s impact goes 0.6 to 0.8 mm in at dt 1 ms under `stiff` instead of 2.7 to 3.2 mm
+  // (docs/contact/implicit_contact.md, "Impacts: sub-steps").
+  int impact_substeps = 32;
 };
 
 enum class SolverKind { cg, direct };
