@@ -94,7 +94,7 @@ TEST_CASE("at the members' surfaces a rigid frame tips at g b/h of its envelope"
 }
 
 TEST_CASE("at the members' surfaces a rigid frame rests on its envelope and stays still", "[contact_dynamics][rest][surface]") {
-  for (const BoxSpec spec : {BoxSpec{0.4, 0.3, 0.8, Vec3::Zero(), 0, 0.05}, BoxSpec{0.9, 0.45, 1.8, Vec3::Zero(), 0, 0.1}}) {
+  for (const BoxSpec& spec : {BoxSpec{0.4, 0.3, 0.8, Vec3::Zero(), 0, 0.05}, BoxSpec{0.9, 0.45, 1.8, Vec3::Zero(), 0, 0.1}}) {
     SurfaceBlock block(spec, 0.5, true);
     const Vec3 c0 = centre_of_mass(*block.sim, block.box.body);
     block.sim->run_until(10.0);
