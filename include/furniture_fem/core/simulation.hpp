@@ -56,6 +56,11 @@ struct SimulationOptions {
   static constexpr double min_dt = 1e-9;
   Vec3 gravity = Vec3(0, 0, -9.80665);
   double mass_damping = 0;      // C = mass_damping * M (1/s); 0: no viscous damping
+  // Structural damping of flexible members (s): each element's deformational force gains
+  // stiffness_damping * k_e * (d - d_n) / dt in its corotated frame (k_e its tangent, d its deformations,
+  // d_n at the step's start), so rigid motion is never damped and a mode at omega gets the damping ratio
+  // stiffness_damping * omega / 2 (docs/core/theory.md, "Structural damping"). 0: none, the paper's code.
+  double stiffness_damping = 0;
   int max_iterations = 25;      // for EquilibriumMode::iterate
   double tolerance = 1e-7;      // residual norm relative to the force scale
   // Refresh (assemble and factorise) each body's matrix every this many steps (1: every step);
@@ -787,6 +792,9 @@ class Simulation {
     frames_.resize(ne);
     d_.assign(ne, Vec12::Zero());
     fl_.assign(ne, Vec12::Zero());
+    dn_.assign(ne, Vec12::Zero());
+    fd_.assign(ne, Vec12::Zero());
+    fdn_.assign(ne, Vec12::Zero());
     committed_.resize(ne);
     for (int e = 0; e < ne; ++e) {
       const auto& el = model_.elements()[e];
@@ -865,6 +873,11 @@ class Simulation {
   void start() {
     started_ = true;
     evaluate_elements(false);
+    if (opt_.stiffness_damping > 0) {  // the damping's rate starts from rest at the present deformations
+      dn_ = d_;
+      fdn_.assign(fdn_.size(), Vec12::Zero());
+      evaluate_elements(false);
+    }
     committed_ = trial_;
     if (static_) return;
     external_forces(t_, fext0_);
@@ -899,7 +912,7 @@ class Simulation {
        s.nodal_load_, s.fgrav_, s.contact_delta_);
     ar(s.predictor_shift_, s.pair_predictor_shift_, s.pair_active_, s.contact_iterated_, s.groups_, s.group_pairs_,
        s.group_of_);
-    ar(s.frames_, s.d_, s.fl_, s.committed_, s.trial_, s.ledger_, s.timings_, s.fields_);
+    ar(s.frames_, s.d_, s.fl_, s.dn_, s.fd_, s.fdn_, s.committed_, s.trial_, s.ledger_, s.timings_, s.fields_);
     for (auto& bs : s.systems_) {
       // The matrix's values in its fixed pattern: as factorised, unless assembled for the next refresh.
       const std::size_t nnz = static_cast<std::size_t>(bs.K.nonZeros());
@@ -1200,6 +1213,8 @@ class Simulation {
     if (bs.rigid) return RigidBody::evaluate(bs);
     for (int n : bs.nodes) fint_.segment<6>(6 * n).setZero();
     const double kf = static_ ? 1.0 : (1 - coef_.alpha_f);
+    // Structural damping: c k_e (d - d_n) / dt on the element's deformations; its tangent c / dt k_e.
+    const double cd = static_ ? 0.0 : opt_.stiffness_damping / opt_.dt;
     Vec12 f, fg;
     Mat12 k, kg;
     for (size_t idx = 0; idx < bs.elements.size(); ++idx) {
@@ -1210,12 +1225,17 @@ class Simulation {
       frames_[e] = cr.E;
       d_[e] = cr.d;
       if constexpr (requires { Element::internal_force(props_[e], committed_[e], cr.d, f, trial_[e]); }) {
-        if (assemble) Element::response(props_[e], committed_[e], cr.d, f, k, trial_[e]);
+        if (assemble || cd > 0) Element::response(props_[e], committed_[e], cr.d, f, k, trial_[e]);
         else Element::internal_force(props_[e], committed_[e], cr.d, f, trial_[e]);
       } else {
         Element::response(props_[e], committed_[e], cr.d, f, k, trial_[e]);
       }
-      fl_[e] = f;
+      fl_[e] = f;  // the members' own forces (sections, strain energy): without the damping
+      if (cd > 0) {
+        fd_[e] = cd * (k * (cr.d - dn_[e]));
+        f += fd_[e];
+        k *= 1 + cd;
+      }
       for (int blk = 0; blk < 4; ++blk) fg.segment<3>(3 * blk) = cr.E * f.segment<3>(3 * blk);
       fint_.segment<6>(6 * el.n1) += fg.head<6>();
       fint_.segment<6>(6 * el.n2) += fg.tail<6>();
@@ -1225,7 +1245,7 @@ class Simulation {
             kg.block<3, 3>(3 * i, 3 * j) = cr.E * k.block<3, 3>(3 * i, 3 * j) * cr.E.transpose();
         if (opt_.geometric_stiffness) {
           // String stiffness of the axial force: N / l (I - e1 e1^T) on the translations.
-          const Mat3 G = f[6] / cr.l * (Mat3::Identity() - cr.E.col(0) * cr.E.col(0).transpose());
+          const Mat3 G = fl_[e][6] / cr.l * (Mat3::Identity() - cr.E.col(0) * cr.E.col(0).transpose());
           kg.block<3, 3>(0, 0) += G;
           kg.block<3, 3>(6, 6) += G;
           kg.block<3, 3>(0, 6) -= G;
@@ -1457,6 +1477,12 @@ class Simulation {
     if (!bs.rigid) {
       for (int e : bs.elements) std::swap(committed_[e], trial_[e]);
       s.shifted += shift_integration_points(b);
+      if (opt_.stiffness_damping > 0 && !static_)
+        for (int e : bs.elements) {  // its force at the step's start and end over the step's deformation
+          s.damping_work -= 0.5 * (fdn_[e] + fd_[e]).dot(d_[e] - dn_[e]);
+          dn_[e] = d_[e];
+          fdn_[e] = fd_[e];
+        }
     }
     for (int n : bs.nodes) {
       const int i = 6 * n;
@@ -2625,6 +2651,9 @@ class Simulation {
   std::vector<ElementProps> props_;
   std::vector<Mat3> E0_, frames_;
   std::vector<Vec12> d_, fl_;
+  // Structural damping: the deformations at the step's start, and the damping force (local) now and at the
+  // step's start.
+  std::vector<Vec12> dn_, fd_, fdn_;
   std::vector<State> committed_, trial_;
   std::vector<int> local_index_;
   std::vector<detail::BodySystem> systems_;
@@ -2676,6 +2705,9 @@ Simulation<Element, Integrator, LinearSolver, Contact>::Simulation(const Model& 
   if (!(opt_.impact_travel > 0) || !std::isfinite(opt_.impact_travel))
     throw ModelError("simulation: impact_travel must be positive and finite (got " + detail::fmt(opt_.impact_travel) +
                      " m)");
+  if (!(opt_.stiffness_damping >= 0) || !std::isfinite(opt_.stiffness_damping))
+    throw ModelError("simulation: stiffness_damping must be finite and at least 0 s (got " +
+                     detail::fmt(opt_.stiffness_damping) + ")");
   if constexpr (Element::needs_pairs) {
     for (int e = 0; e < model_.num_elements(); ++e)
       if (model_.elements()[e].slot == PairSlot::none)

@@ -64,7 +64,13 @@ class OdeintSystem {
   // Adds external nodal forces at time t to f (6 per node: forces, then moments; world axes).
   using load_function = std::function<void(double t, Eigen::VectorXd& f)>;
 
-  explicit OdeintSystem(Sim& sim) : sim_(&sim), nodes_(sim.model().num_nodes()) {}
+  // Structural damping (SimulationOptions::stiffness_damping) is a rate over the implicit step's
+  // deformation increment: an explicit system function has no step to take it over.
+  explicit OdeintSystem(Sim& sim) : sim_(&sim), nodes_(sim.model().num_nodes()) {
+    if (sim.options().stiffness_damping != 0)
+      throw ModelError("odeint: stiffness_damping is not supported by the explicit system (got " +
+                       detail::fmt(sim.options().stiffness_damping) + " s); use mass_damping");
+  }
 
   void set_load(load_function load) { load_ = std::move(load); }
   std::size_t size() const { return 12 * static_cast<std::size_t>(nodes_); }

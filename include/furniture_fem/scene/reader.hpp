@@ -329,7 +329,7 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
 
   if (r.has("integrator")) {
     const ObjectReader in = r.object("integrator");
-    in.allow_only({"scheme", "rho_inf", "iterate_to_equilibrium", "impact_substeps"});
+    in.allow_only({"scheme", "rho_inf", "iterate_to_equilibrium", "impact_substeps", "stiffness_damping"});
     s.integrator.scheme = in.enumeration("scheme", detail::integrator_names, s.integrator.scheme, "integrator");
     s.integrator.rho_inf = in.number("rho_inf", s.integrator.rho_inf);
     in.in_range("rho_inf", 0, 1);
@@ -337,6 +337,8 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
     const long long substeps = in.integer("impact_substeps", s.integrator.impact_substeps);
     in.in_range("impact_substeps", 1, 1000);
     s.integrator.impact_substeps = static_cast<int>(substeps);
+    s.integrator.stiffness_damping = in.number("stiffness_damping", s.integrator.stiffness_damping);
+    in.in_range("stiffness_damping", 0, 1);
   }
   s.solver = r.enumeration("solver", detail::solver_names, s.solver, "solver");
   if (const std::string why = detail::solver_problem(s.solver, s.contact.law); !why.empty()) r.fail(r.path("solver"), why);

@@ -505,6 +505,7 @@ struct SceneSimulation {
     so.refresh_interval_steps = refresh_interval_steps > 0 ? refresh_interval_steps : spec.refresh_interval_steps();
     so.threads = threads;
     so.max_impact_substeps = spec.integrator.impact_substeps;
+    so.stiffness_damping = spec.integrator.stiffness_damping;
     sim = std::make_unique<Sim>(*model, integrator, so, std::move(contact));
     const TableMotion* m = &motion;
     sim->set_table_acceleration([m](double t) { return m->at(t); });

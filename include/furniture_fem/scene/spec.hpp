@@ -183,6 +183,9 @@ struct IntegratorSpec {
   // 32: a 5 m/s impact goes 0.6 to 0.8 mm in at dt 1 ms under `stiff` instead of 2.7 to 3.2 mm
   // (docs/contact/implicit_contact.md, "Impacts: sub-steps").
   int impact_substeps = 32;
+  // Structural damping of the flexible members (s; SimulationOptions::stiffness_damping): a frame mode
+  // at f Hz gets the damping ratio pi f times this. 0: none, as the paper's code.
+  double stiffness_damping = 0;
 };
 
 enum class SolverKind { cg, direct };

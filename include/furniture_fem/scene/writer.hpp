@@ -112,7 +112,8 @@ inline nlohmann::json to_json(const SceneSpec& s) {
   j["integrator"] = {{"scheme", enum_name(detail::integrator_names, s.integrator.scheme)},
                      {"rho_inf", s.integrator.rho_inf},
                      {"iterate_to_equilibrium", s.integrator.iterate_to_equilibrium},
-                     {"impact_substeps", s.integrator.impact_substeps}};
+                     {"impact_substeps", s.integrator.impact_substeps},
+                     {"stiffness_damping", s.integrator.stiffness_damping}};
   j["solver"] = enum_name(detail::solver_names, s.solver);
   j["refresh_every"] = s.refresh_every;
   j["duration"] = s.duration;
