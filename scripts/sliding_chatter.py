@@ -36,6 +36,9 @@ def main():
     ap.add_argument('--kinds', default='desk,table,locker')
     ap.add_argument('--variants', default='', help='|-separated prefixes of the variants to run (default: all)')
     ap.add_argument('--mu', type=float, default=None, help='friction coefficient (default 0.5; 0.2 for tall kinds)')
+    ap.add_argument('--law', default='stiff', help='contact law (default stiff)')
+    ap.add_argument('--floor-stiffness', type=float, default=None, help='contact.floor.stiffness (N/m per node)')
+    ap.add_argument('--floor-damping', type=float, default=None, help='contact.floor.damping (N s/m per node)')
     a = ap.parse_args()
     os.makedirs(fvr.OUT, exist_ok=True)
     print('| kind | variant | p-p m | against rigid | airborne | peak N/W | ledger |')
@@ -50,8 +53,10 @@ def main():
         for name, fid, changes in VARIANTS:
             if a.variants and fid != 'rigid' and not any(name.startswith(v) for v in a.variants.split('|')):
                 continue
-            sc = fvr.scene(kind, fid, 'stiff', None, mu, {"x": pts}, fvr.SETTLE + 4.0,
+            sc = fvr.scene(kind, fid, a.law, None, mu, {"x": pts}, fvr.SETTLE + 4.0,
                            [{"name": "p", "item": "it", "point": [0, 0, 0.0]}])
+            floor = {k: v for k, v in (('stiffness', a.floor_stiffness), ('damping', a.floor_damping)) if v is not None}
+            if floor: sc['contact']['floor'] = floor
             sc.update(changes)
             path = os.path.join(fvr.OUT, f"chatter_{kind}_{name.replace(' ', '_').replace(',', '')}.json")
             od = path[:-5]
