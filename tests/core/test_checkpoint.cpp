@@ -76,6 +76,25 @@ void require_same_state(const Sim& a, const Sim& b) {
   REQUIRE(a.factorizations() == b.factorizations());
 }
 
+// A run stopped after `at` steps, its checkpoint loaded into a new simulation and run on to `steps`,
+// against the run never stopped; returns the uninterrupted run.
+std::unique_ptr<Sim> resume_matches(const Model& model, EquilibriumMode mode, double stiffness_damping, int at, int steps) {
+  auto whole = make(model, mode, stiffness_damping);
+  auto first = make(model, mode, stiffness_damping);
+  for (int k = 0; k < at; ++k) first->step();
+  StateWriter w;
+  first->save_state(w);
+  first.reset();  // the stopped run is gone; only its bytes are left
+  auto resumed = make(model, mode, stiffness_damping);
+  StateReader r(w.bytes(), "memory");
+  resumed->load_state(r);
+  r.finish();
+  for (int k = 0; k < steps; ++k) whole->step();
+  for (int k = at; k < steps; ++k) resumed->step();
+  require_same_state(*whole, *resumed);
+  return whole;
+}
+
 }  // namespace
 
 TEST_CASE("a simulation loaded from a checkpoint takes the uninterrupted run's steps, to the bit", "[checkpoint]") {
@@ -84,19 +103,7 @@ TEST_CASE("a simulation loaded from a checkpoint takes the uninterrupted run's s
     // Saved at steps that fall before, on and after a refresh of the reused factorisation (every 7).
     for (const int at : {1, 23, 28, 150}) {
       INFO("mode " << (mode == EquilibriumMode::iterate ? "iterate" : "carry-over") << ", saved after step " << at);
-      auto whole = make(f.model, mode);
-      auto first = make(f.model, mode);
-      for (int k = 0; k < at; ++k) first->step();
-      StateWriter w;
-      first->save_state(w);
-      first.reset();  // the stopped run is gone; only its bytes are left
-      auto resumed = make(f.model, mode);
-      StateReader r(w.bytes(), "memory");
-      resumed->load_state(r);
-      r.finish();
-      for (int k = 0; k < 400; ++k) whole->step();
-      for (int k = at; k < 400; ++k) resumed->step();
-      require_same_state(*whole, *resumed);
+      resume_matches(f.model, mode, 0.0, at, 400);
     }
   }
   // The run is one where the state matters: the column yields at its root and the frame falls freely.
@@ -114,19 +121,7 @@ TEST_CASE("with structural damping a checkpoint also resumes to the bit", "[chec
   ColumnAndFrame f;
   for (const int at : {23, 150}) {
     INFO("saved after step " << at);
-    auto whole = make(f.model, EquilibriumMode::carry_over, 5e-4);
-    auto first = make(f.model, EquilibriumMode::carry_over, 5e-4);
-    for (int k = 0; k < at; ++k) first->step();
-    StateWriter w;
-    first->save_state(w);
-    first.reset();
-    auto resumed = make(f.model, EquilibriumMode::carry_over, 5e-4);
-    StateReader r(w.bytes(), "memory");
-    resumed->load_state(r);
-    r.finish();
-    for (int k = 0; k < 300; ++k) whole->step();
-    for (int k = at; k < 300; ++k) resumed->step();
-    require_same_state(*whole, *resumed);
+    const auto whole = resume_matches(f.model, EquilibriumMode::carry_over, 5e-4, at, 300);
     CHECK(whole->energy().damping_work < 0);
   }
 }

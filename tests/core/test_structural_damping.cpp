@@ -40,6 +40,28 @@ Decay decay_of(const std::vector<double>& x, std::size_t from) {
   return r;
 }
 
+// One element clamped at node n1, node n2 free only axially: a one-DOF oscillator with k = EA/L and
+// m = rho A L / 2 (the lumped node mass), L = 1 m.
+struct AxialBar {
+  Model m;
+  int n1 = 0, n2 = 0;
+  double omega = 0;
+  AxialBar() {
+    const int b = m.add_body("bar");
+    const int sec = m.add_section(Section::hollow_rectangle(0.05, 0.03, 0.002));
+    const int mat = m.add_material(Material::steel());
+    n1 = m.add_node({0, 0, 0}, b);
+    n2 = m.add_node({1, 0, 0}, b);
+    MemberOptions o;
+    o.elements = 1;
+    o.pairs = false;
+    m.add_member("bar", n1, n2, sec, mat, o);
+    m.fix(n1);
+    m.fix(n2, ALL_DOFS & ~UX);
+    omega = std::sqrt(m.materials()[mat].E / (m.materials()[mat].rho / 2));
+  }
+};
+
 }  // namespace
 
 TEST_CASE("structural damping decays a one-DOF bar at the ratio c omega / 2", "[dynamics][damping]") {
@@ -50,29 +72,18 @@ TEST_CASE("structural damping decays a one-DOF bar at the ratio c omega / 2", "[
   // 0.1 (the backward difference's own error is O(omega dt)^2); measured here 0.01999, 0.05001, 0.1001;
   // bound 0.5 %. Without damping the decrement vanishes (measured -3e-9; bound 1e-6).
   for (const double zeta : {0.0, 0.02, 0.05, 0.1}) {
-    Model m;
-    const int b = m.add_body("bar");
-    const int sec = m.add_section(Section::hollow_rectangle(0.05, 0.03, 0.002));
-    const int mat = m.add_material(Material::steel());
-    const int n1 = m.add_node({0, 0, 0}, b), n2 = m.add_node({1, 0, 0}, b);
-    MemberOptions o;
-    o.elements = 1;
-    o.pairs = false;
-    m.add_member("bar", n1, n2, sec, mat, o);
-    m.fix(n1);
-    m.fix(n2, ALL_DOFS & ~UX);
-    const double k = m.materials()[mat].E * m.sections()[sec].A, mass = m.materials()[mat].rho * m.sections()[sec].A / 2;
-    const double omega = std::sqrt(k / mass);
+    const AxialBar bar;
+    const double omega = bar.omega;
     SimulationOptions opt;
     opt.gravity.setZero();
     opt.dt = 0.05 / omega;
     opt.stiffness_damping = 2 * zeta / omega;
-    Simulation<ConventionalTimoshenko> sim(m, Newmark::average_acceleration(), opt);
-    sim.set_velocity(n2, (Vec6() << 1e-3 * omega, 0, 0, 0, 0, 0).finished());
+    Simulation<ConventionalTimoshenko> sim(bar.m, Newmark::average_acceleration(), opt);
+    sim.set_velocity(bar.n2, (Vec6() << 1e-3 * omega, 0, 0, 0, 0, 0).finished());
     std::vector<double> x{0.0};
     for (int i = 0; i < static_cast<int>(6 * 2 * std::numbers::pi / 0.05); ++i) {
       sim.step();
-      x.push_back(sim.displacement(n2).x());
+      x.push_back(sim.displacement(bar.n2).x());
     }
     const Decay d = decay_of(x, 0);
     INFO("zeta " << zeta << ": measured " << d.zeta << " over " << d.cycles << " cycles");
@@ -180,19 +191,12 @@ TEST_CASE("structural damping leaves a free frame's rigid motion alone", "[dynam
 
 TEST_CASE("stiffness_damping: a negative or non-finite value is refused, naming it",
           "[dynamics][damping][input]") {
-  Model m;
-  const int b = m.add_body("bar");
-  const int sec = m.add_section(Section::hollow_rectangle(0.05, 0.03, 0.002));
-  const int mat = m.add_material(Material::steel());
-  const int n1 = m.add_node({0, 0, 0}, b), n2 = m.add_node({1, 0, 0}, b);
-  MemberOptions o;
-  o.elements = 2;
-  m.add_member("bar", n1, n2, sec, mat, o);
+  const AxialBar bar;
   SimulationOptions opt;
   for (const double c : {-1e-4, std::nan(""), std::numeric_limits<double>::infinity()}) {
     opt.stiffness_damping = c;
     INFO("c = " << c);
-    REQUIRE_THROWS_WITH((Simulation<AsiGaussTimoshenko>(m, Newmark::paper(), opt)),
+    REQUIRE_THROWS_WITH((Simulation<ConventionalTimoshenko>(bar.m, Newmark::paper(), opt)),
                         Catch::Contains("stiffness_damping must be finite and at least 0 s (got " + detail::fmt(c) + ")"));
   }
 }
