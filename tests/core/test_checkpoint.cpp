@@ -6,6 +6,7 @@
 #include <furniture_fem/core/simulation.hpp>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -40,10 +41,12 @@ struct ColumnAndFrame {
 
 using Sim = Simulation<AsiGaussTimoshenko, RuntimeIntegrator>;
 
-std::unique_ptr<Sim> make(const Model& model, EquilibriumMode mode, double stiffness_damping = 0) {
+std::unique_ptr<Sim> make(const Model& model, EquilibriumMode mode, double stiffness_damping = 0,
+                          double frame_drift_refresh = 0) {
   SimulationOptions opt;
   opt.dt = 1e-3;
   opt.stiffness_damping = stiffness_damping;
+  opt.frame_drift_refresh = frame_drift_refresh;
   opt.refresh_interval_steps = 7;
   RuntimeIntegrator integrator = RuntimeIntegrator::from(Newmark::paper());
   integrator.mode = mode;
@@ -78,14 +81,15 @@ void require_same_state(const Sim& a, const Sim& b) {
 
 // A run stopped after `at` steps, its checkpoint loaded into a new simulation and run on to `steps`,
 // against the run never stopped; returns the uninterrupted run.
-std::unique_ptr<Sim> resume_matches(const Model& model, EquilibriumMode mode, double stiffness_damping, int at, int steps) {
-  auto whole = make(model, mode, stiffness_damping);
-  auto first = make(model, mode, stiffness_damping);
+std::unique_ptr<Sim> resume_matches(const Model& model, EquilibriumMode mode, double stiffness_damping, int at, int steps,
+                                    double frame_drift_refresh = 0) {
+  auto whole = make(model, mode, stiffness_damping, frame_drift_refresh);
+  auto first = make(model, mode, stiffness_damping, frame_drift_refresh);
   for (int k = 0; k < at; ++k) first->step();
   StateWriter w;
   first->save_state(w);
   first.reset();  // the stopped run is gone; only its bytes are left
-  auto resumed = make(model, mode, stiffness_damping);
+  auto resumed = make(model, mode, stiffness_damping, frame_drift_refresh);
   StateReader r(w.bytes(), "memory");
   resumed->load_state(r);
   r.finish();
@@ -123,6 +127,27 @@ TEST_CASE("with structural damping a checkpoint also resumes to the bit", "[chec
     INFO("saved after step " << at);
     const auto whole = resume_matches(f.model, EquilibriumMode::carry_over, 5e-4, at, 300);
     CHECK(whole->energy().damping_work < 0);
+  }
+}
+
+TEST_CASE("with refreshes on frame drift a checkpoint also resumes to the bit", "[checkpoint][factor_reuse]") {
+  // A refresh on drift compares each member's frame with its frame at the factorisation
+  // (SimulationOptions::frame_drift_refresh): a checkpoint without those frames would resume with no
+  // drift to see, and refactorise at other steps. The yielding column's members turn away from its
+  // rotation by more than 1e-4 rad within the 7 steps between scheduled refreshes.
+  ColumnAndFrame f;
+  for (const int at : {23, 150}) {
+    INFO("saved after step " << at);
+    const auto whole = resume_matches(f.model, EquilibriumMode::carry_over, 0.0, at, 300, 1e-4);
+    CHECK(whole->drift_refreshes() > 0);
+    CHECK(whole->max_frame_drift() <= 1e-4);
+  }
+  SimulationOptions opt;
+  for (const double a : {-1e-4, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    opt.frame_drift_refresh = a;
+    INFO("frame_drift_refresh = " << a);
+    REQUIRE_THROWS_WITH((Sim(f.model, RuntimeIntegrator::from(Newmark::paper()), opt)),
+                        Catch::Contains("frame_drift_refresh must be finite and at least 0 rad (got " + detail::fmt(a) + ")"));
   }
 }
 

@@ -61,6 +61,11 @@ struct SimulationOptions {
   // d_n at the step's start), so rigid motion is never damped and a mode at omega gets the damping ratio
   // stiffness_damping * omega / 2 (docs/core/theory.md, "Structural damping"). 0: none, the paper's code.
   double stiffness_damping = 0;
+  // A flexible body's reused factorisation is refreshed when one of its members has turned away from
+  // the body's rotation by more than this angle (rad) since the factorisation (FlexibleBody::frame_drift):
+  // a chair's short stiff members, factorised while it landed, made the reuse create energy in the free
+  // flight after (docs/core/theory.md section 8, "Members that turn on their own"). 0: never, as before.
+  double frame_drift_refresh = 0;
   int max_iterations = 25;      // for EquilibriumMode::iterate
   double tolerance = 1e-7;      // residual norm relative to the force scale
   // Refresh (assemble and factorise) each body's matrix every this many steps (1: every step);
@@ -492,6 +497,18 @@ class Simulation {
     long n = 0;
     for (const auto& bs : systems_) n += bs.refinement_solves;
     return n;
+  }
+  // Factorisations due to a member's frame drifting from its body's rotation (frame_drift_refresh), and
+  // the largest drift a reused factorisation solved with.
+  long drift_refreshes() const {
+    long n = 0;
+    for (const auto& bs : systems_) n += bs.drift_refreshes;
+    return n;
+  }
+  double max_frame_drift() const {
+    double e = 0;
+    for (const auto& bs : systems_) e = std::max(e, bs.max_frame_drift);
+    return e;
   }
   long refinement_fallbacks() const {
     long n = 0;
@@ -926,7 +943,7 @@ class Simulation {
         for (std::size_t i = 0; i < nnz; ++i) ar(bs.K.valuePtr()[i]);
       }
       ar(bs.Q_factor, bs.steps_since_refresh, bs.needs_refresh, bs.assembled, bs.rigid, bs.rigid_c0, bs.rigid_dc,
-         bs.rigid_Q, bs.contact, bs.contact_factored, bs.status_factored, bs.max_reuse_error, bs.factored_nodes, bs.contact_columns, bs.contact_column, bs.contact_column_dim,
+         bs.rigid_Q, bs.contact, bs.contact_factored, bs.status_factored, bs.max_reuse_error, bs.frames_factor, bs.max_frame_drift, bs.drift_refreshes, bs.factored_nodes, bs.contact_columns, bs.contact_column, bs.contact_column_dim,
          bs.contact_columns_used, bs.r, bs.dx, bs.work);
     }
     long factorizations = s.factorizations();
@@ -1560,6 +1577,15 @@ class Simulation {
       // (refine_solution), the others put on it by the Woodbury identity after the solve or, more than
       // max_contact_updates of them, factorised now.
       std::vector<ContactChange> changes, refine;
+      if (reuse && !bs.needs_refresh && sim.opt_.frame_drift_refresh > 0) {
+        const double drift = frame_drift(sim, bs, Q * bs.Q_factor.transpose());
+        if (drift > sim.opt_.frame_drift_refresh) {
+          bs.needs_refresh = true;
+          ++bs.drift_refreshes;
+        } else {
+          bs.max_frame_drift = std::max(bs.max_frame_drift, drift);
+        }
+      }
       if (!bs.needs_refresh && !sim.static_) {
         changes = contact_changes(sim, b, Q * bs.Q_factor.transpose(), bs.max_reuse_error, refine);
         if (static_cast<int>(changes.size()) > max_contact_updates) bs.needs_refresh = true;
@@ -1591,6 +1617,8 @@ class Simulation {
           return;
         }
         bs.Q_factor = Q;
+        bs.frames_factor.resize(bs.elements.size());
+        for (std::size_t i = 0; i < bs.elements.size(); ++i) bs.frames_factor[i] = sim.frames_[bs.elements[i]];
         bs.needs_refresh = false;
         bs.assembled = false;
         bs.steps_since_refresh = 0;
@@ -1600,6 +1628,25 @@ class Simulation {
         ++s.refreshed;
       }
       solve_reused(sim, b, s, Q, changes, refine);
+    }
+
+    // The reuse takes the body's rigid turn P since the factorisation out of the solve (solve_reused),
+    // exact while every member turns with the body. A member that turned on its own since, as the short,
+    // stiff members of a chair do while it lands (their frames 2 mrad off the body's when the chair left
+    // the floor), has its axial stiffness along a stale direction: the solve's error grows with that
+    // stiffness times the angle, a force the next steps carry over, and the chair's energy grew by 17 J
+    // within 40 ms of free flight (docs/core/theory.md section 8, "Members that turn on their own").
+    // Returns the largest sine of the angle between a member's frame now and its frame at the
+    // factorisation turned by P.
+    static double frame_drift(const Simulation& sim, const detail::BodySystem& bs, const Mat3& P) {
+      if (bs.frames_factor.size() != bs.elements.size()) return 0;
+      double worst = 0;
+      for (std::size_t i = 0; i < bs.elements.size(); ++i) {
+        const Mat3 rel = (P * bs.frames_factor[i]).transpose() * sim.frames_[bs.elements[i]];
+        const Vec3 sin_axis(rel(2, 1) - rel(1, 2), rel(0, 2) - rel(2, 0), rel(1, 0) - rel(0, 1));
+        worst = std::max(worst, 0.5 * sin_axis.norm());
+      }
+      return worst;
     }
 
     // Solves with the factorisation as it is: the changes on the Woodbury update, the refine terms by
@@ -2705,6 +2752,9 @@ Simulation<Element, Integrator, LinearSolver, Contact>::Simulation(const Model& 
   if (!(opt_.impact_travel > 0) || !std::isfinite(opt_.impact_travel))
     throw ModelError("simulation: impact_travel must be positive and finite (got " + detail::fmt(opt_.impact_travel) +
                      " m)");
+  if (!(opt_.frame_drift_refresh >= 0) || !std::isfinite(opt_.frame_drift_refresh))
+    throw ModelError("simulation: frame_drift_refresh must be finite and at least 0 rad (got " +
+                     detail::fmt(opt_.frame_drift_refresh) + ")");
   if (!(opt_.stiffness_damping >= 0) || !std::isfinite(opt_.stiffness_damping))
     throw ModelError("simulation: stiffness_damping must be finite and at least 0 s (got " +
                      detail::fmt(opt_.stiffness_damping) + ")");

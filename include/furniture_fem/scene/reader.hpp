@@ -329,7 +329,8 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
 
   if (r.has("integrator")) {
     const ObjectReader in = r.object("integrator");
-    in.allow_only({"scheme", "rho_inf", "iterate_to_equilibrium", "impact_substeps", "stiffness_damping"});
+    in.allow_only({"scheme", "rho_inf", "iterate_to_equilibrium", "impact_substeps", "stiffness_damping",
+                  "frame_drift_refresh"});
     s.integrator.scheme = in.enumeration("scheme", detail::integrator_names, s.integrator.scheme, "integrator");
     s.integrator.rho_inf = in.number("rho_inf", s.integrator.rho_inf);
     in.in_range("rho_inf", 0, 1);
@@ -339,6 +340,8 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
     s.integrator.impact_substeps = static_cast<int>(substeps);
     s.integrator.stiffness_damping = in.number("stiffness_damping", s.integrator.stiffness_damping);
     in.in_range("stiffness_damping", 0, 1);
+    s.integrator.frame_drift_refresh = in.number("frame_drift_refresh", s.integrator.frame_drift_refresh);
+    in.in_range("frame_drift_refresh", 0, 0.1);
   }
   s.solver = r.enumeration("solver", detail::solver_names, s.solver, "solver");
   if (const std::string why = detail::solver_problem(s.solver, s.contact.law); !why.empty()) r.fail(r.path("solver"), why);

@@ -506,6 +506,7 @@ struct SceneSimulation {
     so.threads = threads;
     so.max_impact_substeps = spec.integrator.impact_substeps;
     so.stiffness_damping = spec.integrator.stiffness_damping;
+    so.frame_drift_refresh = spec.integrator.frame_drift_refresh;
     sim = std::make_unique<Sim>(*model, integrator, so, std::move(contact));
     const TableMotion* m = &motion;
     sim->set_table_acceleration([m](double t) { return m->at(t); });

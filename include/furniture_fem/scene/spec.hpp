@@ -186,6 +186,9 @@ struct IntegratorSpec {
   // Structural damping of the flexible members (s; SimulationOptions::stiffness_damping): a frame mode
   // at f Hz gets the damping ratio pi f times this. 0: none, as the paper's code.
   double stiffness_damping = 0;
+  // A flexible item's reused factorisation is refreshed when one of its members turned more than this
+  // (rad) away from the item's rotation since (SimulationOptions::frame_drift_refresh). 0: never, as before.
+  double frame_drift_refresh = 0;
 };
 
 enum class SolverKind { cg, direct };

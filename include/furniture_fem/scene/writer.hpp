@@ -113,7 +113,8 @@ inline nlohmann::json to_json(const SceneSpec& s) {
                      {"rho_inf", s.integrator.rho_inf},
                      {"iterate_to_equilibrium", s.integrator.iterate_to_equilibrium},
                      {"impact_substeps", s.integrator.impact_substeps},
-                     {"stiffness_damping", s.integrator.stiffness_damping}};
+                     {"stiffness_damping", s.integrator.stiffness_damping},
+                     {"frame_drift_refresh", s.integrator.frame_drift_refresh}};
   j["solver"] = enum_name(detail::solver_names, s.solver);
   j["refresh_every"] = s.refresh_every;
   j["duration"] = s.duration;

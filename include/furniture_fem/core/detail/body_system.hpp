@@ -103,6 +103,12 @@ struct BodySystem {
   // The largest relative change of a node's contact term that a reused factorisation left out of a
   // solve (below FlexibleBody::contact_change_tolerance, in the same regime) since the start.
   double max_reuse_error = 0;
+  // The element frames (local element order) when the matrix was factorised, and the factorisations
+  // due because a member's frame turned away from the body's rotation by more than
+  // SimulationOptions::frame_drift_refresh since (largest drift a reused factorisation solved with: max_frame_drift).
+  std::vector<Mat3> frames_factor;
+  double max_frame_drift = 0;
+  long drift_refreshes = 0;
   // Conjugate-gradient solves of contact changes refined on a reused factorisation, and the steps whose
   // refinement did not converge (their changes then went on the Woodbury update or a refactorisation).
   long refinement_solves = 0, refinement_fallbacks = 0;
