@@ -60,6 +60,10 @@ TEST_CASE("integrator.frame_drift_refresh: a full chair that lands on its side c
     INFO("a = " << a << " m/s^2: " << s.status << " " << s.diagnosis);
     CHECK(s.status == "completed");
     CHECK(s.items.at(0).max_tilt_deg > 90.0);
+    // Reported: the refreshes it took, and the largest drift a reused factorisation solved with.
+    CHECK(s.drift_refreshes > 0);
+    CHECK(s.max_frame_drift > 0);
+    CHECK(s.max_frame_drift <= 5e-4);
   }
   CHECK(parse_scene_json(sudden_chair(6.0), "drift.json").integrator.frame_drift_refresh == 0.0);
 

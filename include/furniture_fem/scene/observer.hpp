@@ -53,6 +53,10 @@ class SimulationView {
   virtual const std::vector<PairForce>& pair_forces() const = 0;
   virtual long factorizations() const = 0;
   virtual double factor_reuse_error() const = 0;  // Simulation::factor_reuse_error
+  // Refactorisations for a member's frame drift, and the largest drift a reused factorisation solved
+  // with (Simulation::drift_refreshes, max_frame_drift; integrator.frame_drift_refresh).
+  virtual long drift_refreshes() const = 0;
+  virtual double max_frame_drift() const = 0;
   // Steps divided for impacts, and the sub-steps they took (Simulation::impact_steps, impact_substeps).
   virtual long impact_steps() const = 0;
   virtual long impact_substeps() const = 0;

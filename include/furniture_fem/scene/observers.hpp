@@ -700,6 +700,8 @@ class SummaryFile : public RunObserver {
         {"linear_solver", std::string(sim.solver_name())},
         {"factorizations", sum.factorizations},
         {"factor_reuse_error", sum.factor_reuse_error},
+        {"frame_drift_refreshes", sum.drift_refreshes},
+        {"max_frame_drift_rad", sum.max_frame_drift},
         {"impact_steps", sum.impact_steps},
         {"impact_substeps", sum.impact_substeps},
         {"max_node_speed_m_s", detail::max_node_speed(sum.items)},

@@ -128,6 +128,10 @@ struct RunSummary {
   // a solve (Simulation::factor_reuse_error; at most 0.3, a change of contact regime never): 0 when
   // every flexible body was refactorised at every step or had no contact.
   double factor_reuse_error = 0;
+  // Refactorisations because a member's frame drifted from its body's rotation, and the largest drift
+  // (rad) a reused factorisation solved with (integrator.frame_drift_refresh; both 0 when it is 0).
+  long drift_refreshes = 0;
+  double max_frame_drift = 0;
   // Steps divided into sub-steps for an impact, and how many sub-steps they took in all
   // (integrator.impact_substeps).
   long impact_steps = 0, impact_substeps = 0;

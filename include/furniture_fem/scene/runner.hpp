@@ -245,6 +245,8 @@ class LastStepView final : public SimulationView {
   const std::vector<PairForce>& pair_forces() const override { return pair_forces_; }
   long factorizations() const override { return sim_.factorizations(); }
   double factor_reuse_error() const override { return sim_.factor_reuse_error(); }
+  long drift_refreshes() const override { return sim_.drift_refreshes(); }
+  double max_frame_drift() const override { return sim_.max_frame_drift(); }
   long impact_steps() const override { return sim_.impact_steps(); }
   long impact_substeps() const override { return sim_.impact_substeps(); }
   const StepTimings& timings() const override { return sim_.timings(); }
@@ -411,6 +413,8 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
   sum.steps = end_state.steps();
   sum.factorizations = sim.factorizations();
   sum.factor_reuse_error = sim.factor_reuse_error();
+  sum.drift_refreshes = sim.drift_refreshes();
+  sum.max_frame_drift = sim.max_frame_drift();
   sum.impact_steps = sim.impact_steps();
   sum.impact_substeps = sim.impact_substeps();
   sum.wall_seconds = wall_now();

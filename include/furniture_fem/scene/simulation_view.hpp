@@ -57,6 +57,8 @@ class SimulationViewOf final : public SteppedSimulation {
   const std::vector<PairForce>& pair_forces() const override { return sim_.contact_model().pair_forces(); }
   long factorizations() const override { return sim_.factorizations(); }
   double factor_reuse_error() const override { return sim_.factor_reuse_error(); }
+  long drift_refreshes() const override { return sim_.drift_refreshes(); }
+  double max_frame_drift() const override { return sim_.max_frame_drift(); }
   long impact_steps() const override { return sim_.impact_steps(); }
   long impact_substeps() const override { return sim_.impact_substeps(); }
   const StepTimings& timings() const override { return sim_.timings(); }
