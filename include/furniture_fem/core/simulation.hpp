@@ -1218,7 +1218,7 @@ class Simulation {
 
   // Element forces (and, where a body's matrix is due, its tangent) at the current configuration.
   void evaluate_elements(bool assemble_all) {
-    detail::parallel_for(body_order_, opt_.threads,
+    pool_.parallel_for(body_order_, opt_.threads,
                          [&](int b) { evaluate_body(b, assemble_all || systems_[b].needs_refresh); });
   }
 
@@ -1324,11 +1324,11 @@ class Simulation {
 
   template <class F>
   void body_sweep(F&& f) {
-    timed(timings_.bodies, [&] { detail::parallel_for(body_order_, sweep_threads(), f); });
+    timed(timings_.bodies, [&] { pool_.parallel_for(body_order_, sweep_threads(), f); });
   }
 
-  // Threads start per sweep (detail/parallel.hpp): a rigid body's share of a sweep is a few
-  // microseconds, less than starting a thread, so a scene without a flexible body sweeps on one.
+  // Waking a helper thread costs about 25 us (detail/parallel.hpp): more than a rigid body's share of
+  // a sweep (a few microseconds), so a scene without a flexible body sweeps on one thread.
   int sweep_threads() const {
     const bool any_flexible = std::any_of(systems_.begin(), systems_.end(), [](const auto& bs) { return !bs.rigid; });
     return any_flexible ? opt_.threads : 1;
@@ -2719,6 +2719,7 @@ class Simulation {
   StepTimings timings_;
   std::vector<BodyStepSums> sums_;  // each body's part of the current step
   std::vector<int> body_order_;  // bodies by decreasing size: the largest starts first in parallel loops
+  detail::PoolHandle pool_;      // the helper threads of those loops (started on the first one)
   template <class F>
   void timed(double& acc, F&& f) {
     const auto t0 = std::chrono::steady_clock::now();

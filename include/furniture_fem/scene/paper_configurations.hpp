@@ -61,6 +61,7 @@ inline SceneSpec configuration(int k, const std::string& records_dir = default_r
   s.contact.implicit = ImplicitContact::rigid;
   s.contact.rigid_pairs = RigidPairContact::members;
   s.integrator = {IntegratorKind::paper_newmark, 0.5, false, 1};  // no impact sub-steps: the paper's code
+  s.integrator.frame_drift_refresh = 0;  // no refresh on a member's frame drift: the paper's code
   s.solver = SolverKind::direct;
   s.outputs.folder = "out/configuration_" + std::to_string(k);
   s.outputs.vtu_every = 100;
