@@ -726,10 +726,8 @@ inline ItemInfo build_table(Model& model, const Placement& placement, double W, 
   const std::string name = detail::name_or(opts, "table");
   detail::check_options(opts, "table '" + name + "'");
   detail::check_size(W, D, H, "table '" + name + "'");
-  if (opts.coarse_mesh() && !(opts.cog_h && opts.cog_d1))
-    return build_table(model, placement, W, D, H, detail::with_full_mesh_cog(opts, D, [&](Model& m, const BuildOptions& full) {
-                         return build_table(m, {}, W, D, H, full);
-                       }));
+  const BuildOptions o = detail::with_full_mesh_cog(
+      opts, D, [&](Model& m, const BuildOptions& full) { return build_table(m, {}, W, D, H, full); });
   detail::Blueprint bp;
   bp.name = name;
   bp.kind = ItemKind::table;
@@ -738,7 +736,7 @@ inline ItemInfo build_table(Model& model, const Placement& placement, double W, 
   const int s = detail::find_or_add_section(model, tube);
   const double c = 0.5 * tube.contact_width();
   const double x1 = 0.5 * W - c, y1 = 0.5 * D - c, z0 = c, z1 = H - c;
-  const double spacing = opts.panel_spacing.value_or(detail::generic_spacing) * opts.effective_grid_scale();
+  const double spacing = o.panel_spacing.value_or(detail::generic_spacing) * o.effective_grid_scale();
   bp.wire.panel("top", 2, z1, detail::lattice(-x1, x1, spacing, 2), detail::lattice(-y1, y1, spacing, 2), s);
   for (auto [leg, x, y] : {std::tuple{"leg_front_left", -x1, -y1}, std::tuple{"leg_front_right", x1, -y1},
                            std::tuple{"leg_rear_left", -x1, y1}, std::tuple{"leg_rear_right", x1, y1}})
@@ -746,13 +744,13 @@ inline ItemInfo build_table(Model& model, const Placement& placement, double W, 
   bp.marker_points = {{"top_front_centre", Vec3(0, -0.5 * D, H)}, {"top_centre", Vec3(0, 0, H)},
                       {"top_front_corner", Vec3(-0.5 * W, -0.5 * D, H)}};
   const double leg_line_mass = Material::steel().rho * tube.A;
-  bp.mass = opts.mass_kg.value_or(detail::table_top_areal_mass * W * D + 4 * H * leg_line_mass);
-  if (opts.cog_h || opts.cog_d1)
-    bp.cog = detail::cog_target(D, opts.cog_h.value_or(0.5 * H), opts.cog_d1.value_or(0.5 * D));
+  bp.mass = o.mass_kg.value_or(detail::table_top_areal_mass * W * D + 4 * H * leg_line_mass);
+  if (o.cog_h || o.cog_d1)
+    bp.cog = detail::cog_target(D, o.cog_h.value_or(0.5 * H), o.cog_d1.value_or(0.5 * D));
   const auto& desk = paper_item(PaperItem::desk);
-  bp.contact = ItemContact::from_rule(bp.mass, opts.mu_static_long.value_or(desk.mu_static_long),
-                                      opts.mu_static_short.value_or(desk.mu_static_short), W >= D ? 0 : 1);
-  return detail::realize(model, bp, placement, opts);
+  bp.contact = ItemContact::from_rule(bp.mass, o.mu_static_long.value_or(desk.mu_static_long),
+                                      o.mu_static_short.value_or(desk.mu_static_short), W >= D ? 0 : 1);
+  return detail::realize(model, bp, placement, o);
 }
 
 }  // namespace furniture_fem

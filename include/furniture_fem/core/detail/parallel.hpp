@@ -16,6 +16,7 @@
 #include <exception>
 #include <memory>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <type_traits>
 #include <vector>
@@ -46,14 +47,16 @@ class WorkerPool {
       for (int i : order) body(i);
       return;
     }
+    // A helper that cannot be started (std::system_error) leaves the pool free for the next loop.
+    const int helpers = start_helpers(std::min(threads, n) - 1);
+    if (helpers == 0) {
+      running_ = false;
+      for (int i : order) body(i);
+      return;
+    }
     using Body = std::remove_reference_t<F>;
     Loop loop{order, const_cast<void*>(static_cast<const void*>(&body)),
               [](void* f, int i) { (*static_cast<Body*>(f))(i); }};
-    const int helpers = std::min(threads, n) - 1;
-    while (static_cast<int>(threads_.size()) < helpers) {
-      const int index = static_cast<int>(threads_.size());
-      threads_.emplace_back([this, index] { serve(index); });
-    }
     {
       std::lock_guard lock(mutex_);
       loop_ = &loop;
@@ -93,6 +96,18 @@ class WorkerPool {
     }
   };
 
+  // Starts helpers up to `wanted` and returns how many there are; fewer if the system refuses a thread.
+  int start_helpers(int wanted) {
+    try {
+      while (static_cast<int>(threads_.size()) < wanted) {
+        const int index = static_cast<int>(threads_.size());
+        threads_.emplace_back([this, index] { serve(index); });
+      }
+    } catch (const std::system_error&) {
+    }
+    return std::min(wanted, static_cast<int>(threads_.size()));
+  }
+
   // Helper `index` joins each loop that asks for more than `index` helpers, if it is still open.
   void serve(int index) {
     long seen = 0;
@@ -125,7 +140,6 @@ class WorkerPool {
 // with its owner, its threads keep serving it.
 class PoolHandle {
  public:
-
   template <class F>
   void parallel_for(const std::vector<int>& order, int threads, F&& body) {
     if (threads > 1 && order.size() > 1 && !pool_) pool_ = std::make_unique<WorkerPool>();
