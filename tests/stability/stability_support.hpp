@@ -87,7 +87,7 @@ inline Outcome run(Scene& scene, const SceneSpec& spec, double t_end,
   Outcome o;
   o.elements = model.num_elements();
   const double dt = sim.options().dt;
-  const ContactStepEstimate est = contact_step_estimate(sim, model, scene.items, scene_body_contacts(spec, model, scene.items));
+  const ContactStepEstimate est = contact_step_estimate(sim, model, scene.items, scene_body_contacts(spec, model, scene.items), spec.contact.law);
   std::vector<double> max_tilt(model.num_bodies(), 0.0);
   const auto t0 = std::chrono::steady_clock::now();
   try {

@@ -245,6 +245,33 @@ class Simulation {
     }
     if (!model_.body(body).nodes.empty()) nodes_set_from_outside(model_.body(body).nodes.front());
   }
+  // At rest where the bodies are now: every velocity and acceleration zero, the clock, the step and
+  // factorisation counts, the timings and the energy ledger back at 0; the next step starts again
+  // (start()) from here.
+  // Positions, rotations, hinges and the contact's history stay. A scene's settled start
+  // (contact.start) loads a settled state and calls this.
+  void restart_at_rest() {
+    place_unplaced_nodes();
+    v_.setZero();
+    a_.setZero();
+    for (int b = 0; b < model_.num_bodies(); ++b)
+      if (!model_.body(b).nodes.empty()) nodes_set_from_outside(model_.body(b).nodes.front());
+    t_ = t_state_ = 0;
+    steps_ = impact_steps_ = impact_substeps_ = 0;
+    divided_ = false;
+    step_start_t_ = std::numeric_limits<double>::quiet_NaN();
+    ledger_ = {};
+    timings_ = {};
+    long made = 0;  // the factorisations count from here
+    for (const auto& solver : solvers_) made += solver->factorizations();
+    factorizations_offset_ = -made;
+    started_ = false;
+    for (auto& bs : systems_) {
+      bs.needs_refresh = true;
+      bs.max_reuse_error = bs.max_frame_drift = 0;
+      bs.drift_refreshes = 0;
+    }
+  }
   Contact& contact() { return contact_; }
   const Contact& contact_model() const { return contact_; }
 

@@ -216,6 +216,11 @@ class FinalStates : public RunObserver {
  public:
   void begin(const RunView& run) override {
     max_tilt_.assign(run.model.num_bodies(), 0.0);
+    // The slide is counted from where each item stands at t = 0: its placement, or after a settled
+    // start (contact.start) where it settled.
+    cog_start_.clear();
+    for (int b = 0; b < run.model.num_bodies(); ++b)
+      cog_start_.push_back(run.model.body_centre_of_gravity(b, [&run](int n) { return run.sim.position(n); }));
     track_tilt(run);
   }
   void after_step(const RunView& run, const StepInfo&) override {
@@ -235,11 +240,12 @@ class FinalStates : public RunObserver {
       if (summary.status == "diverged") summary.items.back().state = "diverged";
     }
   }
-  void save(StateWriter& w) override { w(max_tilt_, settle_fz_on_a_, settle_steps_); }
-  void resume(const RunView&, StateReader& r) override { r(max_tilt_, settle_fz_on_a_, settle_steps_); }
+  void save(StateWriter& w) override { w(max_tilt_, settle_fz_on_a_, settle_steps_, cog_start_); }
+  void resume(const RunView&, StateReader& r) override { r(max_tilt_, settle_fz_on_a_, settle_steps_, cog_start_); }
 
  private:
   std::vector<double> max_tilt_;
+  std::vector<Vec3> cog_start_;  // per body, at t = 0
   std::map<std::pair<int, int>, double> settle_fz_on_a_;
   int settle_steps_ = 0;
 
@@ -256,9 +262,8 @@ class FinalStates : public RunObserver {
     ItemFinalState st;
     st.name = it.name;
     const Mat3 Q = detail::body_rotation_of(sim, model, it.body);
-    const Vec3 cog0 = model.body_centre_of_gravity(it.body);
     const Vec3 cog = model.body_centre_of_gravity(it.body, [&sim](int n) { return sim.position(n); });
-    st.cog_displacement = cog - cog0;
+    st.cog_displacement = cog - cog_start_[it.body];
     st.slide = std::hypot(st.cog_displacement.x(), st.cog_displacement.y());
     st.tilt_deg = detail::tilt_of(Q);
     st.max_tilt_deg = max_tilt_[it.body];
@@ -719,6 +724,9 @@ class SummaryFile : public RunObserver {
         {"max_energy_imbalance_relative", sum.max_energy_imbalance},
         {"energy_verdict", detail::energy_verdict_json(sum.energy)},
         {"ground_motion_scale_factor", sum.ground_motion_scale},
+        {"settled_start", sum.settled_start ? nlohmann::json{{"settling_time_s", sum.settled_start->settling_time},
+                                                             {"max_node_speed_m_s", sum.settled_start->max_node_speed}}
+                                            : nlohmann::json()},
         {"ground_motion_peak_m_s2",
          {motion.peaks().x(), motion.peaks().y(), motion.peaks().z()}},
         {"final_state", detail::final_state_json(sum.items)},

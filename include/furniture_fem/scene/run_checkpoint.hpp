@@ -26,7 +26,8 @@
 namespace furniture_fem {
 
 inline constexpr const char* checkpoint_file = "checkpoint.bin";
-inline constexpr std::string_view checkpoint_magic = "furniture_fem checkpoint 2";  // 2: the Figures observer keeps the energy series
+// 2: the Figures observer keeps the energy series; 3: a settled start's figures and each item's start.
+inline constexpr std::string_view checkpoint_magic = "furniture_fem checkpoint 3";
 
 // What a resumed run must share with the run that wrote the checkpoint: the scene and every run
 // option that changes a result or a file (not the threads, the progress bar or the checkpoint period).
@@ -51,6 +52,7 @@ struct RunnerState {
   EnergyLedger row_energy, trusted;  // at the last history row; of the last row that passed the energy check
   double max_energy_imbalance = 0;   // RunSummary::max_energy_imbalance so far
   double wall_seconds = 0;           // spent before this part of the run
+  double settling_time = -1, settled_speed = 0;  // RunSummary::settled_start; settling_time < 0: none
 };
 
 namespace detail {

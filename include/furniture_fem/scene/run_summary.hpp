@@ -113,6 +113,13 @@ struct SectionForcePeak {
   std::array<double, 6> min, max, t_min, t_max;
 };
 
+// A settled start (contact.start "settled"): the simulated time the items took to settle before t = 0,
+// and the largest nodal speed they were left with.
+struct SettledStart {
+  double settling_time = 0;  // s
+  double max_node_speed = 0;  // m/s
+};
+
 struct RunSummary {
   std::string status = "completed";  // completed, stopped, diverged
   std::string diagnosis;             // why it stopped; for a completed run, empty or an energy-loss warning
@@ -142,6 +149,7 @@ struct RunSummary {
   std::string out_dir;                          // empty when the run wrote no files
   // The factor ground_motion.scale_to applied to the record (1 without a target); `level` multiplies after.
   double ground_motion_scale = 1.0;
+  std::optional<SettledStart> settled_start;  // contact.start "settled": how the items settled
 };
 
 }  // namespace furniture_fem

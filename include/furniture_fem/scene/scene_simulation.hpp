@@ -326,30 +326,60 @@ inline std::vector<RigidPlane> scene_planes(const SceneSpec& s) {
   return planes;
 }
 
-// A node-mass estimate of the largest stable time step of the contact penalty, which the solver
-// treats explicitly (contact forces are not in the effective matrix): a floor node of mass m on the
-// penalty spring alpha / L is stable for dt below 2 sqrt(m L / alpha). Conservative, since the
-// structure around a node adds to its mass (the paper's penalties run stably at dt = 5 ms).
+// The slope of the law's normal force at a node resting under `weight` (N) on a contact of half-width L:
+// the overlap where the law at rest pushes with `weight` (by bisection, at most L), and the law's own
+// stiffness there (its normal part's, plus its damping part's at rest). 0 if the law gives none.
+template <class Law>
+double resting_normal_stiffness(const ContactParams& p, double L, double weight) {
+  const Law law{};
+  const auto at = [&](double overlap) {
+    ContactKinematics k;
+    k.L = L;
+    k.l = L - overlap;
+    ContactState state;
+    return law.force(k, p, state);
+  };
+  double lo = 0, hi = L;
+  if (at(hi).normal > weight)
+    for (int i = 0; i < 60; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (at(mid).normal < weight ? lo : hi) = mid;
+    }
+  return at(hi).K(2, 2);
+}
+
+// A node-mass estimate of the largest stable time step of the floor contact where it is treated
+// explicitly (outside the implicit step): a floor node of mass m on its normal spring k, the law's slope
+// at the node's resting overlap (its share of the item's weight), is stable for dt below 2 sqrt(m / k).
+// Conservative, since the structure around a node adds to its mass (the paper's penalties run stably at
+// dt = 5 ms). The law's spring, not the paper's alpha / L for every law: `stiff` (2.5 um under the
+// weight) diverged in 0.27 s at dt 1 ms while this said 3.76 ms was stable.
 struct ContactStepEstimate {
   double dt = std::numeric_limits<double>::infinity();
   std::string item;  // the item whose floor nodes give the estimate
 };
 template <class Sim>
 ContactStepEstimate contact_step_estimate(const Sim& sim, const Model& model, const std::vector<ItemInfo>& items,
-                                          const std::vector<BodyContact>& contacts) {
+                                          const std::vector<BodyContact>& contacts, ContactLawKind law) {
   std::vector<double> half(model.num_nodes(), std::numeric_limits<double>::infinity());
   for (int e = 0; e < model.num_elements(); ++e)
     for (int n : {model.elements()[e].n1, model.elements()[e].n2})
       half[n] = std::min(half[n], 0.5 * model.section_of(e).contact_width());
   ContactStepEstimate est;
-  for (const auto& it : items) {
-    const double alpha = contacts.at(it.body).floor.alpha;
-    if (!(alpha > 0)) continue;
-    for (int n : it.bottom_nodes) {
-      const double d = 2.0 * std::sqrt(sim.nodal_mass(n) * half[n] / alpha);
-      if (d < est.dt) est = {d, it.name};
+  visit_scene_law(law, [&]<class R>() {
+    for (const auto& it : items) {
+      if (it.bottom_nodes.empty() || contacts.at(it.body).implicit) continue;  // inside the step: no limit
+      const ContactParams& p = contacts.at(it.body).floor;
+      const double weight = model.body_mass(it.body) * ContactParams::newtons_per_kgf / double(it.bottom_nodes.size());
+      for (int n : it.bottom_nodes) {
+        if (!std::isfinite(half[n])) continue;
+        const double k = resting_normal_stiffness<typename R::law>(p, half[n], weight);
+        if (!(k > 0)) continue;
+        const double d = 2.0 * std::sqrt(sim.nodal_mass(n) / k);
+        if (d < est.dt) est = {d, it.name};
+      }
     }
-  }
+  });
   return est;
 }
 
@@ -382,12 +412,13 @@ inline std::string energy_creation_diagnosis(const EnergyLedger& E, double dt, d
   if (dt > est.dt)
     why += "The contact penalty is too stiff for the time step: dt = " + fmt(1e3 * dt) +
            " ms exceeds the explicit contact's stable step, estimated at " + fmt(1e3 * est.dt) + " ms for item '" +
-           est.item + "' (2 sqrt(m L / alpha) over its floor nodes); reduce dt or the penalty alpha_kgf.";
+           est.item + "' (2 sqrt(m / k) over its floor nodes, k the contact law's normal stiffness at rest); reduce "
+           "dt or the contact's stiffness.";
   else
     why += "dt = " + fmt(1e3 * dt) + " ms is within the explicit contact's estimated stable step (" +
            fmt(1e3 * est.dt) + " ms, item '" + est.item +
            "'): items starting interpenetrated (the penalty releases the energy stored in the overlap) are the "
-           "likely cause; check the placement, or reduce dt or the penalty alpha_kgf.";
+           "likely cause; check the placement, or reduce dt or the contact's stiffness.";
   return why;
 }
 
@@ -403,7 +434,7 @@ inline std::string energy_loss_warning(const EnergyLedger& E, double dt, double 
   if (dt > est.dt)
     o << "The contact penalty is too stiff for the time step: dt = " << 1e3 * dt
       << " ms exceeds the explicit contact's stable step, estimated at " << 1e3 * est.dt << " ms for item '" << est.item
-      << "'; reduce dt or the penalty alpha_kgf.";
+      << "'; reduce dt or the contact's stiffness.";
   else
     o << "Impacts (items landing or striking each other) lose energy with the carried-over penalty contact at "
          "this dt (docs/performance.md, stability); a smaller dt reduces the loss.";

@@ -154,6 +154,15 @@ enum class PlaneContactAt { centre_lines, surfaces };
 // docs/contact/contact.md, "Rigid pairs by their hulls").
 enum class RigidPairContact { members, hulls };
 
+// Where the items start: placed just touching the floor (the paper's start; they then sink into their
+// penalty springs under gravity), or settled there first, at rest on their contacts. The paper's law
+// damps the normal motion by a force of constant size below velocity_regularisation, so an item that
+// carries its weight unevenly sinks into its resting penetrations over about half a minute, leaning
+// as it goes (docs/contact/verification_contact.md, "Full items against rigid ones"). A settled start
+// steps the scene with the table still and that damping's regularisation raised until every node is
+// at rest, then starts the run there, at t = 0, with every velocity zero (docs/scene/scene_file.md).
+enum class ContactStart { touching, settled };
+
 struct ContactSpec {
   ContactLawKind law;  // the list's first law, "paper", unless set
   // Unset: the law's default, else all; read it through implicit_contact(ContactSpec).
@@ -170,6 +179,7 @@ struct ContactSpec {
   // Hulls by default (issue 52: Coulomb sliding of a stack within 0.6 % against 1.9 % by members, and
   // configuration 3 all rigid at 0.6 to 1.3 times MuJoCo's time against 3 to 4 times; docs/contact/contact.md).
   RigidPairContact rigid_pairs = RigidPairContact::hulls;
+  ContactStart start = ContactStart::touching;
   ContactOverrides floor, wall, item;
 };
 

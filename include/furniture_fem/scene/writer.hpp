@@ -101,7 +101,8 @@ inline nlohmann::json to_json(const SceneSpec& s) {
                   {"implicit", enum_name(detail::implicit_contact_names, implicit_contact(s.contact))},
                   {"velocity_regularisation", s.contact.velocity_regularisation},
                   {"plane_contact_at", enum_name(detail::plane_contact_at_names, s.contact.plane_contact_at)},
-                  {"rigid_pairs", enum_name(detail::rigid_pair_contact_names, s.contact.rigid_pairs)}};
+                  {"rigid_pairs", enum_name(detail::rigid_pair_contact_names, s.contact.rigid_pairs)},
+                  {"start", enum_name(detail::contact_start_names, s.contact.start)}};
   if (scene_law(s.contact.law).own_stick_spring.empty()) contact["stick_length"] = s.contact.stick_length;
   for (auto [key, o] : {std::pair{"floor", &s.contact.floor}, std::pair{"wall", &s.contact.wall},
                         std::pair{"item", &s.contact.item}}) {
