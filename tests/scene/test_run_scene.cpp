@@ -776,10 +776,12 @@ TEST_CASE("the explicit contact's stable step is estimated from the scene's law,
   CHECK(stiff.dt == Approx(stiff_expected).epsilon(1e-6));
   CHECK(stiff.dt < 1e-3);  // the run that diverged at dt 1 ms is told why
   CHECK(stiff.item == "locker");
+  CHECK(stiff.remedy() == "reduce dt");  // `stiff` sets its own spring: nothing else to change
   const auto [paper, paper_expected] = estimate("paper", "none", PaperLaw{});
   INFO("paper: " << paper.dt << " s, closed form " << paper_expected << " s");
   CHECK(paper.dt == Approx(paper_expected).epsilon(1e-6));
   CHECK(paper.dt > 1e-3);
+  CHECK(paper.remedy() == "reduce dt or the penalty alpha_kgf");
   CHECK(std::isinf(estimate("stiff", "all", SpringDashpotLaw{}).first.dt));
 }
 

@@ -357,6 +357,9 @@ double resting_normal_stiffness(const ContactParams& p, double L, double weight)
 struct ContactStepEstimate {
   double dt = std::numeric_limits<double>::infinity();
   std::string item;  // the item whose floor nodes give the estimate
+  // What sets the law's normal stiffness in a scene ("the penalty alpha_kgf"); empty: nothing but dt.
+  std::string stiffness_key;
+  std::string remedy() const { return stiffness_key.empty() ? "reduce dt" : "reduce dt or " + stiffness_key; }
 };
 template <class Sim>
 ContactStepEstimate contact_step_estimate(const Sim& sim, const Model& model, const std::vector<ItemInfo>& items,
@@ -366,6 +369,10 @@ ContactStepEstimate contact_step_estimate(const Sim& sim, const Model& model, co
     for (int n : {model.elements()[e].n1, model.elements()[e].n2})
       half[n] = std::min(half[n], 0.5 * model.section_of(e).contact_width());
   ContactStepEstimate est;
+  const SceneLawInfo& info = scene_law(law);
+  est.stiffness_key = info.reads("alpha_kgf")   ? "the penalty alpha_kgf"
+                      : info.reads("stiffness") ? "contact.floor.stiffness"
+                                                : "";
   visit_scene_law(law, [&]<class R>() {
     for (const auto& it : items) {
       if (it.bottom_nodes.empty() || contacts.at(it.body).implicit) continue;  // inside the step: no limit
@@ -376,7 +383,7 @@ ContactStepEstimate contact_step_estimate(const Sim& sim, const Model& model, co
         const double k = resting_normal_stiffness<typename R::law>(p, half[n], weight);
         if (!(k > 0)) continue;
         const double d = 2.0 * std::sqrt(sim.nodal_mass(n) / k);
-        if (d < est.dt) est = {d, it.name};
+        if (d < est.dt) est.dt = d, est.item = it.name;
       }
     }
   });
@@ -412,13 +419,13 @@ inline std::string energy_creation_diagnosis(const EnergyLedger& E, double dt, d
   if (dt > est.dt)
     why += "The contact penalty is too stiff for the time step: dt = " + fmt(1e3 * dt) +
            " ms exceeds the explicit contact's stable step, estimated at " + fmt(1e3 * est.dt) + " ms for item '" +
-           est.item + "' (2 sqrt(m / k) over its floor nodes, k the contact law's normal stiffness at rest); reduce "
-           "dt or the contact's stiffness.";
+           est.item + "' (2 sqrt(m / k) over its floor nodes, k the contact law's normal stiffness at rest); " +
+           est.remedy() + ".";
   else
     why += "dt = " + fmt(1e3 * dt) + " ms is within the explicit contact's estimated stable step (" +
            fmt(1e3 * est.dt) + " ms, item '" + est.item +
            "'): items starting interpenetrated (the penalty releases the energy stored in the overlap) are the "
-           "likely cause; check the placement, or reduce dt or the contact's stiffness.";
+           "likely cause; check the placement, or " + est.remedy() + ".";
   return why;
 }
 
@@ -434,7 +441,7 @@ inline std::string energy_loss_warning(const EnergyLedger& E, double dt, double 
   if (dt > est.dt)
     o << "The contact penalty is too stiff for the time step: dt = " << 1e3 * dt
       << " ms exceeds the explicit contact's stable step, estimated at " << 1e3 * est.dt << " ms for item '" << est.item
-      << "'; reduce dt or the contact's stiffness.";
+      << "'; " << est.remedy() << ".";
   else
     o << "Impacts (items landing or striking each other) lose energy with the carried-over penalty contact at "
          "this dt (docs/performance.md, stability); a smaller dt reduces the loss.";
