@@ -247,9 +247,8 @@ class Simulation {
   }
   // At rest where the bodies are now: every velocity and acceleration zero, the clock, the step and
   // factorisation counts, the timings and the energy ledger back at 0; the next step starts again
-  // (start()) from here.
-  // Positions, rotations, hinges and the contact's history stay. A scene's settled start
-  // (contact.start) loads a settled state and calls this.
+  // (start()) from here. Positions, rotations, hinges and the contact's history stay. A scene's settled
+  // start (contact.start) loads a settled state and calls this.
   void restart_at_rest() {
     place_unplaced_nodes();
     v_.setZero();

@@ -97,12 +97,12 @@ struct ItemFinalState {
                               // (fell: upright again at the end, but it tipped past 60 degrees or came
                               // down more than 5 cm on the way, e.g. off the item it stood on; diverged:
                               // the run diverged, the numbers are those of its last finite step)
-  double slide = 0;           // horizontal displacement of the centre of gravity (m)
+  double slide = 0;           // horizontal displacement of the centre of gravity since t = 0 (m)
   double tilt_deg = 0;        // angle of the item's vertical axis from the vertical
   double max_tilt_deg = 0;    // during the run
   double lift = 0;            // height of the lowest node above the floor contact onset (m)
   std::string resting_on;     // the item it leans or rests on, if any
-  Vec3 cog_displacement = Vec3::Zero();  // of its centre of gravity, every mass it carries (m)
+  Vec3 cog_displacement = Vec3::Zero();  // of its centre of gravity (every mass it carries) since t = 0 (m)
   double max_node_speed = 0;  // the largest speed of any of its nodes at the end, relative to the table (m/s)
 };
 
