@@ -158,7 +158,7 @@ enum class RigidPairContact { members, hulls };
 // penalty springs under gravity), or settled there first, at rest on their contacts. The paper's law
 // damps the normal motion by a force of constant size below velocity_regularisation, so an item that
 // carries its weight unevenly sinks into its resting penetrations over about half a minute, leaning
-// as it goes (docs/contact/verification_contact.md, "Full items against rigid ones"). A settled start
+// as it goes (docs/contact/verification_contact.md, "A settled start"). A settled start
 // steps the scene with the table still and that damping's regularisation raised until every node is
 // at rest, then starts the run there, at t = 0, with every velocity zero (docs/scene/scene_file.md).
 enum class ContactStart { touching, settled };
