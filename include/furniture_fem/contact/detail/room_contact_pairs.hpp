@@ -1,0 +1,333 @@
+#pragma once
+// furniture_fem/contact/detail/room_contact_pairs.hpp: RoomContact's item-item contact: element pairs by the broad phase, mesh obstacles, rigid pairs by their hulls.
+// Included by contact/room_contact.hpp right after the class: member functions of RoomContact defined out of
+// the class (declared, with what they do, in it); not a header of its own.
+#ifndef FURNITURE_FEM_CONTACT_INTERNAL
+#error "furniture_fem/contact/detail/room_contact_pairs.hpp is internal: include <furniture_fem/contact/room_contact.hpp>"
+#endif
+
+namespace furniture_fem {
+
+template <class Law>
+inline void RoomContact<Law>::element_contacts(const ContactView& view, Eigen::VectorXd& f) {
+  const Model& model = view.model;
+  bool rerun = x_broad_.size() != view.x.size();
+  if (!rerun) {
+    const double limit2 = 0.25 * margin * margin;
+    for (size_t n = 0; n < view.x.size() && !rerun; ++n) rerun = (view.x[n] - x_broad_[n]).squaredNorm() > limit2;
+  }
+  const auto t_broad = std::chrono::steady_clock::now();
+  if (rerun) {
+    x_broad_ = view.x;
+    std::vector<ElementBox> boxes;
+    boxes.reserve(model.num_elements());
+    for (int e = 0; e < model.num_elements(); ++e) {
+      const auto& el = model.elements()[e];
+      boxes.push_back(ElementBox::around(view.x[el.n1], view.x[el.n2],
+                                         0.5 * model.section_of(e).contact_width() + margin, e, el.body));
+    }
+    broad_phase_.pairs(boxes, candidates_);
+    ++broad_runs_;
+  }
+  const auto t_pairs = std::chrono::steady_clock::now();
+  timings_.broad += std::chrono::duration<double>(t_pairs - t_broad).count();
+  struct AddPairs {  // on every way out of the loop
+    Timings& t;
+    std::chrono::steady_clock::time_point t0;
+    ~AddPairs() { t.pairs += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); }
+  } add_pairs{timings_, t_pairs};
+  for (const auto& [ea, eb] : candidates_) {
+    const auto& A = model.elements()[ea];
+    const auto& B = model.elements()[eb];
+    if (hulls_on_ && hull_pair(A.body, B.body)) continue;  // hull_contacts
+    // Most candidates are apart (the broad phase's boxes are `margin` larger): their boxes show it
+    // before the closest points, the history lookup and the law. Apart, evaluate_segment_pair
+    // gives no force and no history, and the loop goes on, as here.
+    const double L = pair_contact_distance(model, ea, eb);
+    if (segments_apart_beyond(view.x[A.n1], view.x[A.n2], view.x[B.n1], view.x[B.n2], L)) continue;
+    ContactState st = committed_pair_state(ea, eb);
+    const auto nf = evaluate_segment_pair(law_, segment_pair(view, ea, eb), pair_params(model, ea, eb), st);
+    if (pair_history_ && nf.in_contact) pair_trial_.set(key(ea, eb), st);
+    if (!nf.in_contact) continue;
+    if (implicit && rigid_[A.body] && rigid_[B.body] && bodies_[A.body].implicit && bodies_[B.body].implicit) {
+      const auto& c = nf.closest;
+      pair_tangents_.push_back({A.body, B.body, A.n1, A.n2, B.n1, B.n2, c.s, c.t, 0.5 * (c.p_WA + c.p_WB),
+                                nf.force.K, nf.force.C, c.p_WA - c.p_WB, nf.kinematics.v});
+      implicit_pairs_.push_back({ea, eb, reported_pair_force(A.body, B.body, nf)});
+    }
+    f.template segment<3>(6 * A.n1) += nf.on_a0;
+    f.template segment<3>(6 * A.n2) += nf.on_a1;
+    f.template segment<3>(6 * B.n1) += nf.on_b0;
+    f.template segment<3>(6 * B.n2) += nf.on_b1;
+    // The moments carrying the tangential force from the contact point to the centre lines make
+    // each pair exactly torque-free.
+    f.template segment<3>(6 * A.n1 + 3) += nf.moment_a0;
+    f.template segment<3>(6 * A.n2 + 3) += nf.moment_a1;
+    f.template segment<3>(6 * B.n1 + 3) += nf.moment_b0;
+    f.template segment<3>(6 * B.n2 + 3) += nf.moment_b1;
+    add_pair_force(std::min(A.body, B.body), std::max(A.body, B.body), reported_pair_force(A.body, B.body, nf));
+    ++active_;
+  }
+}
+
+template <class Law>
+inline SegmentPair RoomContact<Law>::segment_pair(const ContactView& view, int ea, int eb) {
+  const Model& model = view.model;
+  const auto& A = model.elements()[ea];
+  const auto& B = model.elements()[eb];
+  SegmentPair sp;
+  sp.a0 = view.x[A.n1];
+  sp.a1 = view.x[A.n2];
+  sp.b0 = view.x[B.n1];
+  sp.b1 = view.x[B.n2];
+  sp.va0 = view.v.template segment<3>(6 * A.n1);
+  sp.va1 = view.v.template segment<3>(6 * A.n2);
+  sp.vb0 = view.v.template segment<3>(6 * B.n1);
+  sp.vb1 = view.v.template segment<3>(6 * B.n2);
+  sp.L = pair_contact_distance(model, ea, eb);
+  sp.dt = view.dt;
+  return sp;
+}
+
+template <class Law>
+inline double RoomContact<Law>::pair_contact_distance(const Model& model, int ea, int eb) {
+  return 0.5 * (model.section_of(ea).contact_width() + model.section_of(eb).contact_width());
+}
+
+template <class Law>
+inline ContactParams RoomContact<Law>::pair_params(const Model& model, int ea, int eb) const {
+  return ContactParams::pair(bodies_[model.elements()[ea].body].item, bodies_[model.elements()[eb].body].item);
+}
+
+template <class Law>
+inline ContactState RoomContact<Law>::committed_pair_state(int ea, int eb) const {
+  if (!pair_history_) return {};
+  const ContactState* st = pair_state_.find(key(ea, eb));
+  return st ? *st : ContactState{};
+}
+
+template <class Law>
+inline Vec3 RoomContact<Law>::reported_pair_force(int body_a, int body_b, const SegmentPairForces& nf) {
+  return body_a < body_b ? Vec3(nf.on_a0 + nf.on_a1) : Vec3(nf.on_b0 + nf.on_b1);
+}
+
+template <class Law>
+inline void RoomContact<Law>::obstacle_contacts(const ContactView& view, Eigen::VectorXd& f) {
+  const Model& model = view.model;
+  for (int n = 0; n < model.num_nodes(); ++n) {
+    const int body = model.node(n).body;
+    for (const auto& ob : obstacles_) {
+      const double L = half_width_[n];
+      // Only nodes within L of the mesh get a closest-point search (one per node and step made a
+      // 20 000-vertex obstacle far from every item cost 5 to 23 s per 50 steps; issue 13).
+      const auto cp = ob.closest_within(view.x[n], L);
+      if (!cp) continue;
+      const Vec3 d = view.x[n] - cp->p_WM;
+      const double l = d.norm();
+      if (l > L || l < 1e-12) continue;
+      // The mesh's closest point as a plane through it, normal towards the node.
+      const NodeOnPlane node{view.x[n], view.v.template segment<3>(6 * n), L, view.dt, Vec3::Zero(), Vec3::Zero()};
+      ContactState st;
+      const ContactForce cf =
+          detail::node_force(law_, node, l, Vec3(d / l), bodies_[body].wall, st);
+      f.template segment<3>(6 * n) += cf.on_a;
+      add_pair_force(body, obstacle_id, cf.on_a);
+      ++active_;
+    }
+  }
+}
+
+template <class Law>
+inline const detail::SupportGeometry& RoomContact<Law>::hull_of(int body) const {
+  return surface_at(body) ? surface_groups_[body].front().geometry : support_[body];
+}
+
+template <class Law>
+inline std::pair<int, Vec3> RoomContact<Law>::hull_point(int body, int i) const {
+  if (!surface_at(body)) return {i, Vec3::Zero()};
+  return {surface_points_[i].node, surface_points_[i].arm0};
+}
+
+template <class Law>
+inline double RoomContact<Law>::hull_distance(int a, int b) const {
+  return (surface_at(a) ? 0.0 : hull_half_width_[a]) + (surface_at(b) ? 0.0 : hull_half_width_[b]);
+}
+
+template <class Law>
+inline double RoomContact<Law>::hull_L(int a, int b) const {
+  return hull_half_width_[a] + hull_half_width_[b];
+}
+
+template <class Law>
+inline void RoomContact<Law>::update_hull_pairs(const Model& model) {
+  const std::size_t nb = bodies_.size();
+  hull_pair_.assign(hulls_on_ ? nb * nb : 0, 0);
+  hull_half_width_.assign(nb, 0.0);
+  if (!hulls_on_) return;
+  const auto points = std::max<long long>(model.num_nodes(), static_cast<long long>(surface_points_.size()));
+  if (points >= hull_id_limit || static_cast<long long>(nb) >= hull_id_limit)
+    throw ModelError("RoomContact: rigid pairs by their hulls name their points below 2^20; this model has " +
+                     std::to_string(points) + " points");
+  for (std::size_t b = 0; b < nb; ++b)
+    for (int n : model.body(static_cast<int>(b)).nodes)
+      if (std::isfinite(half_width_[n])) hull_half_width_[b] = std::max(hull_half_width_[b], half_width_[n]);
+  const auto has_hull = [&](int b) {
+    if (!rigid_[b]) return false;
+    if (surface_at(b)) return !surface_groups_[b].empty() && !surface_groups_[b].front().geometry.faces.empty();
+    return !support_[b].faces.empty();
+  };
+  const auto rest = [&](int body) {
+    return [this, &model, body](int i) -> Vec3 {
+      const auto [n, arm] = hull_point(body, i);
+      return model.node(n).X + arm;
+    };
+  };
+  for (int a = 0; a < static_cast<int>(nb); ++a)
+    for (int b = a + 1; b < static_cast<int>(nb); ++b) {
+      if (!has_hull(a) || !has_hull(b)) continue;
+      // Overlapping hulls at rest (deeper than the contact distance allows): nested, element pairs.
+      const bool nested =
+          detail::hull_separation(hull_of(a), rest(a), hull_of(b), rest(b), hull_distance(a, b)) < -nested_overlap;
+      hull_pair_[a * nb + b] = hull_pair_[b * nb + a] = !nested;
+    }
+  hull_body_.assign(nb, 0);
+  for (std::size_t a = 0; a < nb; ++a)
+    for (std::size_t b = 0; b < nb; ++b) hull_body_[a] = hull_body_[a] || hull_pair_[a * nb + b];
+  // Element pairs are left only if some pair of bodies does not meet by its hulls.
+  any_element_pairs_ = false;
+  for (std::size_t a = 0; a < nb; ++a)
+    for (std::size_t b = a + 1; b < nb; ++b) any_element_pairs_ = any_element_pairs_ || !hull_pair_[a * nb + b];
+}
+
+template <class Law>
+inline long long RoomContact<Law>::hull_key(detail::HullPointKind kind, long long p, long long q, long long r) {
+  return (1LL << 62) | (static_cast<long long>(kind) << 60) | (p << 40) | (q << 20) | r;
+}
+
+template <class Law>
+inline long long RoomContact<Law>::hull_key(const detail::HullContactPoint& pt, int inc, int ref) {
+  using K = detail::HullPointKind;
+  switch (pt.kind) {
+    case K::corner: return hull_key(pt.kind, pt.id, 0, ref);
+    case K::entering:
+    case K::leaving: return hull_key(pt.kind, pt.id, pt.id2, 0);
+    case K::reference: return hull_key(pt.kind, pt.id, 0, inc);
+  }
+  return -1;
+}
+
+template <class Law>
+inline ContactState RoomContact<Law>::committed_hull_state(const HullContact& hc) const {
+  if (!pair_history_ || hc.key < 0) return {};
+  const ContactState* st = pair_state_.find(hc.key);
+  return st ? *st : ContactState{};
+}
+
+template <class Law>
+inline void RoomContact<Law>::hull_contacts(const ContactView& view, Eigen::VectorXd& f) {
+  if (!view.rotations)
+    throw ModelError("RoomContact: rigid pairs by their hulls need the nodes' rotations in the ContactView");
+  const std::size_t nb = bodies_.size();
+  // Each hull body's vertices placed once (the separating axes read each many times), and its box.
+  hull_box_lo_.assign(nb, Vec3::Constant(std::numeric_limits<double>::infinity()));
+  hull_box_hi_.assign(nb, Vec3::Constant(-std::numeric_limits<double>::infinity()));
+  for (std::size_t b = 0; b < nb; ++b) {
+    if (!hull_body_[b]) continue;
+    for (int v : hull_of(static_cast<int>(b)).vertices) {
+      const auto [n, arm] = hull_point(static_cast<int>(b), v);
+      const Vec3 x = view.x[n] + (*view.rotations)[n] * arm;
+      if (static_cast<std::size_t>(v) >= hull_x_.size()) hull_x_.resize(static_cast<std::size_t>(v) + 1);
+      hull_x_[v] = x;
+      hull_box_lo_[b] = hull_box_lo_[b].cwiseMin(x);
+      hull_box_hi_[b] = hull_box_hi_[b].cwiseMax(x);
+    }
+  }
+  const auto at = [this](int i) -> const Vec3& { return hull_x_[i]; };
+  detail::HullPairContact hc;
+  for (int a = 0; a < static_cast<int>(nb); ++a)
+    for (int b = a + 1; b < static_cast<int>(nb); ++b) {
+      if (!hull_pair_[a * nb + b]) continue;
+      // Boxes apart by more than the contact distance: no face can touch.
+      const double d = hull_distance(a, b);
+      if (((hull_box_lo_[a] - hull_box_hi_[b]).array() > d).any() || ((hull_box_lo_[b] - hull_box_hi_[a]).array() > d).any())
+        continue;
+      if (!detail::hull_pair_contact(hull_of(a), at, hull_of(b), at, d, 0.0, hull_bias, hc))
+        continue;
+      const int inc = hc.reference_on_a ? b : a, ref = hc.reference_on_a ? a : b;
+      const int ref_node = hull_point(ref, hc.reference->frame[0]).first;
+      const int inc_face_node = hull_point(inc, hc.incident->frame[0]).first;
+      for (const auto& pt : hc.points) {
+        HullContact c;
+        c.body_a = inc, c.body_b = ref;
+        // A corner of the incident face is a hull point of its body; any other point is held by the
+        // incident face's first node.
+        const bool corner = pt.kind == detail::HullPointKind::corner;
+        const Vec3& x_inc = pt.x;
+        c.node_a = corner ? hull_point(inc, pt.id).first : inc_face_node;
+        c.node_b = ref_node;
+        const Mat3& Ra = (*view.rotations)[c.node_a];
+        const Mat3& Rb = (*view.rotations)[c.node_b];
+        c.arm_a0 = Ra.transpose() * (x_inc - view.x[c.node_a]);
+        c.arm_b0 = Rb.transpose() * (x_inc - view.x[c.node_b]);
+        c.normal0 = Rb.transpose() * hc.normal;
+        c.gap0 = pt.gap;
+        c.L = hull_L(a, b);
+        c.share = hc.incident->share;
+        c.key = hull_key(pt, inc, ref);
+        c.implicit = implicit && bodies_[a].implicit && bodies_[b].implicit;
+        ContactState st = committed_hull_state(c);
+        const ContactForce cf = hull_contact_force(view, c, st);
+        if (pair_history_ && c.key >= 0 && cf.in_contact) pair_trial_.set(c.key, st);
+        if (!cf.in_contact) continue;
+        apply_hull_force(view, c, cf.on_a, f);
+        c.reported = c.body_a < c.body_b ? cf.on_a : Vec3(-cf.on_a);
+        add_pair_force(std::min(a, b), std::max(a, b), c.reported);
+        ++active_;
+        if (c.implicit) {
+          const Vec3 arm_a = Ra * c.arm_a0, arm_b = Rb * c.arm_b0;
+          PairContactTangent t{c.body_a, c.body_b, c.node_a, c.node_a, c.node_b, c.node_b, 0, 0, x_inc, cf.K, cf.C,
+                               view.x[c.node_a] + arm_a - (view.x[c.node_b] + arm_b),
+                               point_velocity(view, c.node_a, arm_a) - point_velocity(view, c.node_b, arm_b),
+                               c.arm_a0, c.arm_b0};
+          pair_tangents_.push_back(t);
+        }
+        hull_contacts_.push_back(c);
+      }
+    }
+}
+
+template <class Law>
+inline Vec3 RoomContact<Law>::point_velocity(const ContactView& view, int n, const Vec3& arm) {
+  return Vec3(view.v.template segment<3>(6 * n)) + Vec3(view.v.template segment<3>(6 * n + 3)).cross(arm);
+}
+
+template <class Law>
+inline ContactForce RoomContact<Law>::hull_contact_force(const ContactView& view, const HullContact& c, ContactState& state) const {
+  const Mat3& Ra = (*view.rotations)[c.node_a];
+  const Mat3& Rb = (*view.rotations)[c.node_b];
+  const Vec3 arm_a = Ra * c.arm_a0, arm_b = Rb * c.arm_b0;
+  const Vec3 pa = view.x[c.node_a] + arm_a, pb = view.x[c.node_b] + arm_b;
+  const Vec3 n = Rb * c.normal0;
+  const double gap = c.gap0 + n.dot(pa - pb);
+  if (!(gap <= 0)) {
+    state = ContactState{};
+    return {};
+  }
+  const NodeOnPlane node{pa, point_velocity(view, c.node_a, arm_a), c.L, view.dt, Vec3::Zero(),
+                         point_velocity(view, c.node_b, arm_b)};
+  ContactParams prm = ContactParams::pair(bodies_[c.body_a].item, bodies_[c.body_b].item);
+  if (c.share != 1.0) prm = scaled_penalty(prm, c.share);
+  return detail::node_force(law_, node, gap + c.L, n, prm, state);
+}
+
+template <class Law>
+inline void RoomContact<Law>::apply_hull_force(const ContactView& view, const HullContact& c, const Vec3& F, Eigen::VectorXd& f) {
+  const Mat3& Ra = (*view.rotations)[c.node_a];
+  const Mat3& Rb = (*view.rotations)[c.node_b];
+  f.template segment<3>(6 * c.node_a) += F;
+  f.template segment<3>(6 * c.node_a + 3) += (Ra * c.arm_a0).cross(F);
+  f.template segment<3>(6 * c.node_b) -= F;
+  f.template segment<3>(6 * c.node_b + 3) -= (Rb * c.arm_b0).cross(F);
+}
+
+}  // namespace furniture_fem

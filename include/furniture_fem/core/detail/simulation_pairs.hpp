@@ -1,0 +1,223 @@
+#pragma once
+// furniture_fem/core/detail/simulation_pairs.hpp: the contact's forces and tangents, and the item-item pairs inside the step (rigid groups).
+// Included by core/simulation.hpp right after the class: member functions of Simulation defined out of
+// the class (declared, with what they do, in it); not a header of its own.
+#ifndef FURNITURE_FEM_CORE_INTERNAL
+#error "furniture_fem/core/detail/simulation_pairs.hpp is internal: include <furniture_fem/core/simulation.hpp>"
+#endif
+
+namespace furniture_fem {
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+inline void Simulation<Element, Integrator, LinearSolver, Contact>::contact_forces(double t, const Eigen::VectorXd& v, Eigen::VectorXd& f) {
+  f.setZero();
+  if constexpr (!std::is_same_v<Contact, NoContact>) {
+    const ContactView view{model_, x_, v, t, opt_.dt, &R_};
+    contact_.add_forces(view, f);
+  }
+  gather_contact_tangents();
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+inline void Simulation<Element, Integrator, LinearSolver, Contact>::gather_contact_tangents() {
+  if constexpr (ImplicitContactPolicy<Contact>) {
+    for (auto& bs : systems_) bs.contact.clear();
+    if (static_) return;
+    const double dt = opt_.dt, kf = 1 - coef_.alpha_f, cf = coef_.gamma / (coef_.beta * dt);
+    for (const auto& t : contact_.nodal_tangents()) {
+      auto& bs = systems_[model_.node(t.node).body];
+      const Mat3 k = kf * (t.K + cf * t.C);
+      const int local = local_index_[t.node];
+      if (!bs.contact.empty() && bs.contact.back().local == local && bs.contact.back().at_node() && t.at_node()) {
+        bs.contact.back().K += k;
+        bs.contact.back().status += t.status;
+      } else {
+        bs.contact.push_back({local, t.status, k, t.arm0});
+      }
+    }
+  }
+  gather_rigid_groups();
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+inline int Simulation<Element, Integrator, LinearSolver, Contact>::group_of(int b) const {
+  return group_of_.empty() ? -1 : group_of_[b];
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+inline void Simulation<Element, Integrator, LinearSolver, Contact>::gather_rigid_groups() {
+  groups_.clear();
+  group_pairs_.clear();
+  group_of_.clear();
+  pair_active_.clear();
+  if constexpr (PairTangentPolicy<Contact>) {
+    const auto& pairs = contact_.pair_tangents();
+    if (static_ || pairs.empty()) return;
+    const int nb = model_.num_bodies();
+    std::vector<int> root(nb);
+    for (int b = 0; b < nb; ++b) root[b] = b;
+    const auto find = [&](int b) {
+      while (root[b] != b) b = root[b] = root[root[b]];
+      return b;
+    };
+    pair_active_.assign(pairs.size(), 0);
+    for (size_t k = 0; k < pairs.size(); ++k) {
+      const auto& p = pairs[k];
+      if (p.body_a == p.body_b || !systems_[p.body_a].rigid || !systems_[p.body_b].rigid) continue;
+      pair_active_[k] = 1;
+      const int ra = find(p.body_a), rb = find(p.body_b);
+      if (ra != rb) root[std::max(ra, rb)] = std::min(ra, rb);
+    }
+    std::vector<int> group_of_root(nb, -1);
+    group_of_.assign(nb, -1);
+    for (size_t k = 0; k < pairs.size(); ++k) {
+      if (!pair_active_[k]) continue;
+      const int r = find(pairs[k].body_a);
+      if (group_of_root[r] < 0) {
+        group_of_root[r] = static_cast<int>(groups_.size());
+        groups_.emplace_back();
+        group_pairs_.emplace_back();
+      }
+      group_pairs_[group_of_root[r]].push_back(static_cast<int>(k));
+    }
+    for (int b = 0; b < nb; ++b)  // ascending: the lowest body of a group leads it
+      if (const int g = group_of_root[find(b)]; g >= 0) {
+        group_of_[b] = g;
+        groups_[g].push_back(b);
+      }
+  }
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+inline Vec3 Simulation<Element, Integrator, LinearSolver, Contact>::pair_relative_position(const PairContactTangent& p) const {
+  if (p.has_arms()) return x_[p.a0] + R_[p.a0] * p.arm_a0 - (x_[p.b0] + R_[p.b0] * p.arm_b0);
+  return (1 - p.s) * x_[p.a0] + p.s * x_[p.a1] - ((1 - p.t) * x_[p.b0] + p.t * x_[p.b1]);
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+inline Vec3 Simulation<Element, Integrator, LinearSolver, Contact>::pair_relative_velocity(const PairContactTangent& p) const {
+  const auto v = [&](int n) { return Vec3(v_.segment<3>(6 * n)); };
+  if (p.has_arms()) {
+    const auto w = [&](int n) { return Vec3(v_.segment<3>(6 * n + 3)); };
+    return v(p.a0) + w(p.a0).cross(R_[p.a0] * p.arm_a0) - (v(p.b0) + w(p.b0).cross(R_[p.b0] * p.arm_b0));
+  }
+  return (1 - p.s) * v(p.a0) + p.s * v(p.a1) - ((1 - p.t) * v(p.b0) + p.t * v(p.b1));
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+inline Vec3 Simulation<Element, Integrator, LinearSolver, Contact>::pair_shift(const PairContactTangent& p) const {
+  return -(p.K * (pair_relative_position(p) - p.x) + p.C * (pair_relative_velocity(p) - p.v));
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+template <class Add>
+inline void Simulation<Element, Integrator, LinearSolver, Contact>::share_pair_force(const PairContactTangent& p, const Vec3& F, Add&& add) const {
+  const Vec3 pa = (1 - p.s) * x_[p.a0] + p.s * x_[p.a1], pb = (1 - p.t) * x_[p.b0] + p.t * x_[p.b1];
+  const Vec3 ma = (p.point - pa).cross(F), mb = (p.point - pb).cross(-F);
+  Vec6 w;
+  const auto put = [&](int n, double share, const Vec3& f, const Vec3& m) {
+    w << share * f, share * m;
+    add(n, w);
+  };
+  put(p.a0, 1 - p.s, F, ma);
+  put(p.a1, p.s, F, ma);
+  put(p.b0, 1 - p.t, -F, mb);
+  put(p.b1, p.t, -F, mb);
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+inline void Simulation<Element, Integrator, LinearSolver, Contact>::solve_and_commit_group(const std::vector<int>& members) {
+  for (int m : members) {
+    BodyStepSums& s = sums_[m];
+    timed(s.solve, [&] { residual_body(systems_[m], fext1_, s.residual_num, s.residual_den); });
+  }
+  update_group(members);
+  resolve_changed_contacts(members);
+  if (opt_.check_finite) {
+    for (int m : members) {
+      BodyStepSums& s = sums_[m];
+      s.not_finite = s.not_finite || !increment_finite(m);
+      if (s.not_finite) return;
+    }
+  }
+  for (int m : members) commit_body(m, sums_[m]);
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+inline void Simulation<Element, Integrator, LinearSolver, Contact>::update_group(const std::vector<int>& members) {
+  timed(sums_[members.front()].solve, [&] { RigidBody::group_newton_step(*this, members); });
+  for (int m : members) {
+    auto& bs = systems_[m];
+    bs.needs_refresh = false;
+    bs.assembled = false;
+    timed(sums_[m].elements, [&] {
+      kinematics_body(m);
+      evaluate_body(m, bs.needs_refresh);
+    });
+  }
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+inline void Simulation<Element, Integrator, LinearSolver, Contact>::linearised_contact_at_current_state() {
+  if constexpr (ImplicitContactPolicy<Contact>) {
+    const auto& tangents = contact_.nodal_tangents();
+    predictor_shift_.resize(tangents.size());
+    for (size_t k = 0; k < tangents.size(); ++k) {
+      predictor_shift_[k] = plane_contact_shift(tangents[k]);
+      add_wrench(fc1_, tangents[k], predictor_shift_[k]);
+    }
+  }
+  if constexpr (PairTangentPolicy<Contact>) {
+    const auto& pairs = contact_.pair_tangents();
+    pair_predictor_shift_.assign(pairs.size(), Vec3::Zero());
+    for (size_t k = 0; k < pair_active_.size(); ++k) {
+      if (!pair_active_[k]) continue;
+      pair_predictor_shift_[k] = pair_shift(pairs[k]);
+      share_pair_force(pairs[k], pair_predictor_shift_[k], [&](int n, const Vec6& w) { fc1_.segment<6>(6 * n) += w; });
+    }
+  }
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+inline void Simulation<Element, Integrator, LinearSolver, Contact>::contact_at_end_of_step() {
+  if constexpr (ImplicitContactPolicy<Contact>) {
+    const StepWork applied = step_work();
+    const auto& tangents = contact_.nodal_tangents();
+    for (size_t k = 0; k < tangents.size(); ++k) {
+      const auto& t = tangents[k];
+      if (contact_iterated_[model_.node(t.node).body]) continue;  // its fc1_ holds its end forces already
+      const int i = 6 * t.node;
+      const Vec6 delta6 = plane_contact_shift(t) - predictor_shift_[k];
+      const Vec3 delta = delta6.template head<3>();
+      add_wrench(fc0_, t, delta6);
+      add_wrench(fnet0_, t, delta6);
+      if (t.at_node()) {
+        ledger_.contact_work += 0.5 * Du_.segment<3>(i).dot(delta);
+        ledger_.contact_work_applied +=
+            applied.of_end_change(applied.path(Du_.segment<3>(i), vn_.segment<3>(i), v_.segment<3>(i)), delta);
+      } else {
+        ledger_.contact_work += 0.5 * Du_.segment<6>(i).dot(delta6);
+        ledger_.contact_work_applied +=
+            applied.of_end_change(applied.path(Du_.segment<6>(i), vn_.segment<6>(i), v_.segment<6>(i)), delta6);
+      }
+    }
+    if constexpr (PairTangentPolicy<Contact>) {
+      const auto& pairs = contact_.pair_tangents();
+      for (size_t k = 0; k < pair_active_.size(); ++k) {
+        if (!pair_active_[k]) continue;
+        share_pair_force(pairs[k], pair_shift(pairs[k]) - pair_predictor_shift_[k], [&](int n, const Vec6& w) {
+          fc0_.segment<6>(6 * n) += w;
+          fnet0_.segment<6>(6 * n) += w;
+          ledger_.contact_work += 0.5 * Du_.segment<6>(6 * n).dot(w);
+          ledger_.contact_work_applied += applied.of_end_change(
+              applied.path(Du_.segment<6>(6 * n), vn_.segment<6>(6 * n), v_.segment<6>(6 * n)), w);
+        });
+      }
+    }
+    contact_delta_.setZero();
+    const ContactView view{model_, x_, v_, t_state_, opt_.dt, &R_};
+    contact_.end_of_step(view, contact_delta_);
+  }
+}
+
+}  // namespace furniture_fem
