@@ -166,6 +166,14 @@ int report(const SceneSpec& spec, const RunSummary& s) {
     std::printf("  ground motion scaled by %.6g to %s %g %s (then level %g)\n", s.ground_motion_scale,
                 target->measure == ScaleMeasure::pga ? "pga" : "pgv", target->value,
                 target->measure == ScaleMeasure::pga ? "m/s^2" : "m/s", spec.ground_motion.level);
+  if (const auto& st = s.settled_start) {
+    if (st->settled)
+      std::printf("  settled start: the items settled in %.2f s\n", st->settling_time);
+    else
+      std::printf("  settled start: NOT settled after %.2f s: a node of %s still moves at %.3g mm/s; the run starts "
+                  "from there at rest (docs/contact/verification_contact.md, \"A settled start\")\n",
+                  st->settling_time, st->fastest_item.c_str(), 1e3 * st->max_node_speed);
+  }
   std::printf("  energy ledger imbalance: %.3g of its scale at the end (max %.3g)\n", s.energy_imbalance,
               s.max_energy_imbalance);
   std::printf("  %s\n", s.energy.text.c_str());

@@ -10,6 +10,8 @@
 #include <furniture_fem/excitation/excitation.hpp>
 #include <furniture_fem/core/simulation.hpp>
 
+#include "../support/cantilever.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -21,33 +23,17 @@ using Catch::Matchers::WithinRel;
 
 namespace {
 
-// A 1 m vertical cantilever of 50 x 30 x 2 tube, clamped at the origin, 20 ASI-Gauss elements.
-// Vertical members take y_ref = global Y: the 50 mm side (local y) lies along Y, the 30 mm side
-// (local z) along X. Its principal axes are X and Y, so it is symmetric for both: an X load bends it
-// in X only (weak axis, E Iy), a Y load in Y only (strong axis, E Iz). First modes 35 Hz (X) and
-// 52 Hz (Y).
-struct Cantilever {
-  Model model;
-  int base = 0, tip = 0;
-  Cantilever() {
-    const int b = model.add_body("cantilever");
-    const int sec = model.add_section(Section::hollow_rectangle(0.05, 0.03, 0.002, "50 x 30 x 2"));
-    Material steel = Material::steel();
-    steel.sigma_y = 1e20;  // elastic
-    const int mat = model.add_material(steel);
-    base = model.add_node({0, 0, 0}, b);
-    tip = model.add_node({0, 0, 1}, b);
-    MemberOptions o;
-    o.elements = 20;
-    model.add_member("post", base, tip, sec, mat, o);
-    model.fix(base);
-  }
-};
+// A 1 m vertical cantilever of 50 x 30 x 2 tube, clamped at the origin, 20 ASI-Gauss elements
+// (tests/support/cantilever.hpp). Vertical members take y_ref = global Y: the 50 mm side (local y) lies
+// along Y, the 30 mm side (local z) along X. Its principal axes are X and Y, so it is symmetric for both:
+// an X load bends it in X only (weak axis, E Iy), a Y load in Y only (strong axis, E Iz). First modes
+// 35 Hz (X) and 52 Hz (Y).
+ffem_test::Cantilever post() { return ffem_test::Cantilever({.elements = 20, .yield_stress = 1e20, .vertical = true}); }
 
 // Tip displacement history (relative to the table) under a table motion, paper Newmark, dt 1 ms,
 // no gravity (so that nothing but the excitation loads it).
 std::vector<Vec3> tip_history(const std::function<Vec3(double)>& table, double t_end, double mass_damping = 0) {
-  Cantilever c;
+  const ffem_test::Cantilever c = post();
   SimulationOptions o;
   o.dt = 1e-3;
   o.gravity.setZero();

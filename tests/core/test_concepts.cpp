@@ -6,6 +6,8 @@
 #include <Eigen/Dense>
 #include <furniture_fem/core/simulation.hpp>
 
+#include "../support/cantilever.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -84,28 +86,7 @@ static_assert(LinearSolverPolicy<DenseLdltSolver>);
 // ---- the checks -----------------------------------------------------------------------------------
 namespace {
 
-struct Cantilever {
-  Model model;
-  int root = 0, tip = 0;
-  double EI = 0, GAs = 0;
-  explicit Cantilever(int elements, bool pairs) {
-    const int b = model.add_body("cantilever");
-    const int sec = model.add_section(Section::hollow_rectangle(0.05, 0.03, 0.002));
-    Material steel;
-    steel.sigma_y = 1e20;  // elastic
-    const int mat = model.add_material(steel);
-    root = model.add_node({0, 0, 0}, b);
-    tip = model.add_node({1, 0, 0}, b);
-    MemberOptions o;
-    o.elements = elements;
-    o.pairs = pairs;
-    o.y_ref = Vec3::UnitY();
-    model.add_member("beam", root, tip, sec, mat, o);
-    model.fix(root);
-    EI = model.materials()[mat].E * model.sections()[sec].Iz;
-    GAs = model.materials()[mat].G() * model.sections()[sec].Asy;
-  }
-};
+using ffem_test::Cantilever;
 
 SimulationOptions no_gravity() {
   SimulationOptions o;
@@ -118,13 +99,13 @@ SimulationOptions no_gravity() {
 TEST_CASE("a user Element policy composes into a Simulation", "[concepts][element]") {
   // Four one-point elements under a tip load: (1 - 1/(4 n^2)) of the bending deflection plus the
   // exact shear deflection, and the same numbers as the library's ConventionalTimoshenko.
-  const Cantilever c(4, false);
+  const Cantilever c({.elements = 4, .yield_stress = 1e20});
   const double P = 0.01;
   Simulation<ElasticCentreTimoshenko> sim(c.model, Newmark{}, no_gravity());
   sim.set_nodal_load(c.tip, (Vec6() << 0, P, 0, 0, 0, 0).finished());
   REQUIRE(sim.solve_static(1, 50, 1e-12).converged);
   const double v = sim.displacement(c.tip).y();
-  const double expected = P * ((1 - 1.0 / 64) / (3 * c.EI) + 1 / c.GAs);
+  const double expected = P * ((1 - 1.0 / 64) / (3 * c.EI()) + 1 / c.GAs());
   CHECK(v == Approx(expected).epsilon(1e-9));
 
   Simulation<ConventionalTimoshenko> lib(c.model, Newmark{}, no_gravity());
@@ -181,8 +162,8 @@ TEST_CASE("a user Integrator policy composes into a Simulation", "[concepts][int
 TEST_CASE("a user LinearSolver policy composes into a Simulation", "[concepts][solver]") {
   // The dense solver reproduces the sparse direct solver on a nonlinear static solve (tip load
   // P L^2/(EI) = 2) and on dynamic steps.
-  const Cantilever c(10, true);
-  const double P = 2 * c.EI;
+  const Cantilever c({.elements = 10, .pairs = true, .yield_stress = 1e20});
+  const double P = 2 * c.EI();
   Simulation<AsiGaussTimoshenko, Newmark, DenseLdltSolver> dense(c.model, Newmark{}, no_gravity());
   Simulation<AsiGaussTimoshenko> sparse(c.model, Newmark{}, no_gravity());
   dense.set_nodal_load(c.tip, (Vec6() << 0, P, 0, 0, 0, 0).finished());

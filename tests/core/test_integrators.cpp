@@ -7,6 +7,8 @@
 #include <furniture_fem/odeint/odeint_adapter.hpp>
 #include <furniture_fem/core/simulation.hpp>
 
+#include "../support/cantilever.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -160,26 +162,14 @@ TEST_CASE("Boost.Odeint RK4 through the adapter matches the implicit solver", "[
   // dt = 20 us (period error (omega dt)^2/12 < 1e-4 for the first mode). Explicit: classical RK4 at
   // half its stability limit 2.83/omega_max. The tip histories agree within 1 % of the amplitude
   // (measured 1.3e-4).
-  Model m;
-  const int b = m.add_body("cantilever");
-  const int sec = m.add_section(Section::hollow_rectangle(0.05, 0.03, 0.002));
-  const int mat = m.add_material(Material::steel());
-  const int root = m.add_node({0, 0, 0}, b), tip = m.add_node({1, 0, 0}, b);
-  MemberOptions o;
-  o.elements = 8;
-  o.y_ref = Vec3::UnitY();
-  m.add_member("beam", root, tip, sec, mat, o);
-  m.fix(root);
+  const ffem_test::Cantilever c;
+  const Model& m = c.model;
+  const int tip = c.tip;
   SimulationOptions opt;
   opt.gravity.setZero();
   opt.dt = 2e-5;
   using Sim = Simulation<AsiGaussTimoshenko>;
-  auto release = [&](Sim& sim) {
-    for (int n = 0; n < m.num_nodes(); ++n) {
-      const double xi = m.node(n).X.x(), v0 = 5.0;
-      if (n != root) sim.set_velocity(n, (Vec6() << 0, v0 * (3 * xi * xi - xi * xi * xi) / 2, 0, 0, 0, v0 * (3 * xi - 1.5 * xi * xi)).finished());
-    }
-  };
+  auto release = [&](Sim& sim) { c.release_in_static_shape(sim, 5.0); };
   const double T = 0.04;
 
   Sim implicit(m, Newmark::average_acceleration(EquilibriumMode::iterate), opt);

@@ -7,6 +7,8 @@
 #include <boost/numeric/odeint/stepper/runge_kutta4.hpp>
 #include <furniture_fem/core/simulation.hpp>
 
+#include "../support/cantilever.hpp"
+
 #include <vector>
 #include <cmath>
 #include <numbers>
@@ -17,39 +19,7 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-// A cantilever along global X from the origin, clamped at x = 0, bending about its strong axis in the
-// X-Y plane (y_ref = Y puts the 50 mm side of the 50 x 30 tube along Y, so EI = E Iz).
-struct Cantilever {
-  Model model;
-  int body = 0, root = 0, tip = 0;
-  double L = 1, E = 0, G = 0, Iz = 0, Asy = 0, Zpz = 0, sigma_y = 0;
-  Cantilever(double length, int elements, bool pairs, double yield_stress = 245e6) : L(length) {
-    body = model.add_body("cantilever");
-    const int sec = model.add_section(Section::hollow_rectangle(0.05, 0.03, 0.002, "50 x 30 tube"));
-    Material steel;
-    steel.sigma_y = yield_stress;
-    const int mat = model.add_material(steel);
-    root = model.add_node({0, 0, 0}, body);
-    tip = model.add_node({L, 0, 0}, body);
-    MemberOptions o;
-    o.elements = elements;
-    o.pairs = pairs;
-    o.y_ref = Vec3::UnitY();
-    model.add_member("beam", root, tip, sec, mat, o);
-    model.fix(root);
-    const auto& s = model.sections()[sec];
-    E = steel.E;
-    G = steel.G();
-    Iz = s.Iz;
-    Asy = s.Asy;
-    Zpz = s.Zpz;
-    sigma_y = steel.sigma_y;
-  }
-  double EI() const { return E * Iz; }
-  double bending_flexibility() const { return L * L * L / (3 * EI()); }  // tip deflection per unit load
-  double shear_flexibility() const { return L / (G * Asy); }
-  double Mp() const { return sigma_y * Zpz; }
-};
+using ffem_test::Cantilever;
 
 SimulationOptions no_gravity() {
   SimulationOptions o;
@@ -77,7 +47,7 @@ TEST_CASE("one ASI-Gauss pair gives the exact cantilever tip deflection", "[stat
   // A 0.01 N load keeps the geometric nonlinearity (of relative size (v/L)^2 ~ 1e-14) below round-off,
   // so 1e-9 is a round-off bound (the Newton solve stops at a relative residual of 1e-12).
   for (int n : {2, 4, 8}) {
-    const Cantilever c(1.0, n, true);
+    const Cantilever c({.length = 1.0, .elements = n, .pairs = true});
     const double P = 0.01;
     const double exact = P * (c.bending_flexibility() + c.shear_flexibility());
     const double v = tip_deflection<AsiGaussTimoshenko>(c, P);
@@ -91,7 +61,7 @@ TEST_CASE("the one-point element gives 1 - 1/(4 n^2) of the bending deflection",
   // (1 - 1/(4 n^2)) P L^3/(3 E I) and the shear part P L/(k G A) is exact. The 1e-6 bound is loose
   // against round-off; it would catch any change of the element's integration point.
   for (int n : {2, 4, 8}) {
-    const Cantilever c(1.0, n, false);
+    const Cantilever c({.length = 1.0, .elements = n, .pairs = false});
     const double P = 0.01;
     const double expected = P * ((1 - 1.0 / (4.0 * n * n)) * c.bending_flexibility() + c.shear_flexibility());
     const double v = tip_deflection<ConventionalTimoshenko>(c, P);
@@ -106,7 +76,7 @@ TEST_CASE("an end moment 2 pi EI / L rolls a cantilever into a full circle", "[s
   // in about one increment per 9 degrees of tip rotation; a 1 % of L bound as specified (the measured
   // errors are near 1e-4 L, from the chord approximation of the arc).
   for (const double turn : {0.25, 0.5, 1.0}) {
-    Cantilever c(1.0, 40, true, 1e20);  // elastic: yield far away
+    Cantilever c({.length = 1.0, .elements = 40, .pairs = true, .yield_stress = 1e20});  // elastic: yield far away
     Simulation<AsiGaussTimoshenko> sim(c.model, Newmark{}, no_gravity());
     const double kappa = 2 * pi * turn / c.L, M = kappa * c.EI();
     sim.set_nodal_load(c.tip, (Vec6() << 0, 0, 0, 0, 0, M).finished());
@@ -178,7 +148,7 @@ TEST_CASE("a cantilever under a large fixed-direction tip load follows the elast
     CHECK(e.v_over_L == Approx(r.v).margin(1e-5));
     CHECK(e.shortening_over_L == Approx(r.shortening).margin(1e-5));
 
-    Cantilever c(2.0, 40, true, 1e20);
+    Cantilever c({.length = 2.0, .elements = 40, .pairs = true, .yield_stress = 1e20});
     Simulation<AsiGaussTimoshenko> sim(c.model, Newmark{}, no_gravity());
     const double P = r.alpha * c.EI() / (c.L * c.L);
     sim.set_nodal_load(c.tip, (Vec6() << 0, P, 0, 0, 0, 0).finished());
@@ -200,7 +170,7 @@ TEST_CASE("cantilever pushed by displacement control collapses at Mp / L", "[sta
   // k_el = 1/(L^3/(3EI) + L/(kGA)); collapse when the root moment P x_tip reaches Mp = sigma_y Zpz,
   // so P = Mp / L up to the tip's shortening (0.2 % at 2.5 times the yield displacement) and the
   // yield surface drift: 2 % as specified.
-  Cantilever c(1.0, 10, true);
+  Cantilever c({.length = 1.0, .elements = 10, .pairs = true});
   const double kel = 1.0 / (c.bending_flexibility() + c.shear_flexibility());
   const double Pc = c.Mp() / c.L, dy = Pc / kel;
 
@@ -295,7 +265,7 @@ TEST_CASE("a fixed-fixed beam under a central load collapses at 8 Mp / L", "[sta
 // a fresh simulation takes.
 TEST_CASE("an exception inside solve_static leaves the simulation dynamic", "[statics]") {
   auto build = [](Model& model) {
-    Cantilever c(1.0, 4, true);
+    Cantilever c({.length = 1.0, .elements = 4, .pairs = true});
     model = c.model;
     const int block = model.add_body("block");
     const int sec = model.add_section(Section::hollow_rectangle(0.05, 0.03, 0.002, "tube"));
@@ -331,7 +301,7 @@ TEST_CASE("displacement control gives the cantilever's tip stiffness", "[statics
   // geometric nonlinearity (~(v/L)^2) below round-off, so 1e-9 bounds the comparison.
   for (int n : {2, 8}) {
     for (double L : {0.5, 1.5}) {
-      const Cantilever c(L, n, true);
+      const Cantilever c({.length = L, .elements = n, .pairs = true});
       const double k = 1.0 / (c.bending_flexibility() + c.shear_flexibility());
       const double P_ref = 100, v = 1e-6 * L;
       Simulation<AsiGaussTimoshenko> sim(c.model, Newmark{}, no_gravity());

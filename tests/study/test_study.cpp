@@ -469,3 +469,37 @@ TEST_CASE("a figure that cannot be written costs a warning, not the study's resu
   CHECK(ffem_test::slurp(opt.out_dir + "/realisations.csv").size() > 100);
   CHECK(std::filesystem::exists(opt.out_dir + "/probabilities.csv"));
 }
+
+TEST_CASE("a study's run record keeps a body's final state with final_state.json's keys, exactly", "[study]") {
+  // One encoding of an item's final state (scene/observers.hpp, item_final_state_json) serves the run's
+  // final_state.json and the study's records: the same keys, and a record read back gives the same numbers.
+  RunResult r;
+  r.run = 7, r.realisation = 3, r.variant = 1, r.status = "completed", r.t_end = 2.5, r.wall_seconds = 0.25;
+  BodyOutcome b;
+  b.name = "desk", b.state = "slid", b.slide = 0.1 / 3, b.tilt_deg = 1.0 / 7, b.max_tilt_deg = 2.0 / 7;
+  b.lift = -1e-3 / 3, b.resting_on = "", b.cog_displacement = Vec3(0.1 / 3, -0.2 / 3, 1e-5 / 7);
+  b.max_node_speed = 1e-4 / 3, b.floor_force_peak = 1234.5 / 7, b.wall_force_peak = 0, b.item_force_peak = 9.75;
+  r.bodies.push_back(b);
+  const nlohmann::json j = to_json(r);
+  const nlohmann::json& body = j.at("bodies").at(0);
+  const nlohmann::json final_state = item_final_state_json(b);
+  for (const auto& [key, value] : final_state.items()) {
+    INFO(key);
+    CHECK(body.at(key) == value);
+  }
+  CHECK(body.size() == final_state.size() + 3);  // and the three force peaks
+  const RunResult back = run_result_from_json(nlohmann::json::parse(j.dump()));
+  REQUIRE(back.bodies.size() == 1);
+  const BodyOutcome& o = back.bodies[0];
+  CHECK(o.name == b.name);
+  CHECK(o.state == b.state);
+  CHECK(o.slide == b.slide);
+  CHECK(o.tilt_deg == b.tilt_deg);
+  CHECK(o.max_tilt_deg == b.max_tilt_deg);
+  CHECK(o.lift == b.lift);
+  CHECK(o.cog_displacement == b.cog_displacement);
+  CHECK(o.max_node_speed == b.max_node_speed);
+  CHECK(o.floor_force_peak == b.floor_force_peak);
+  CHECK(o.item_force_peak == b.item_force_peak);
+  CHECK(to_json(back) == j);
+}

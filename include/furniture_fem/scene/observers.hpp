@@ -44,6 +44,35 @@
 
 namespace furniture_fem {
 
+// One item's final state, as final_state.json and a study's run records write it (one set of keys);
+// nlohmann's numbers round-trip exactly.
+inline nlohmann::json item_final_state_json(const ItemFinalState& s) {
+  return {{"item", s.name},
+          {"state", s.state},
+          {"slide_m", s.slide},
+          {"tilt_deg", s.tilt_deg},
+          {"max_tilt_deg", s.max_tilt_deg},
+          {"lift_m", s.lift},
+          {"resting_on", s.resting_on},
+          {"cog_displacement_m", {s.cog_displacement.x(), s.cog_displacement.y(), s.cog_displacement.z()}},
+          {"max_node_speed_m_s", s.max_node_speed}};
+}
+// Reads it back; throws nlohmann::json::exception on a missing key or a wrong type.
+inline ItemFinalState item_final_state_from_json(const nlohmann::json& j) {
+  ItemFinalState s;
+  s.name = j.at("item").get<std::string>();
+  s.state = j.at("state").get<std::string>();
+  s.slide = j.at("slide_m").get<double>();
+  s.tilt_deg = j.at("tilt_deg").get<double>();
+  s.max_tilt_deg = j.at("max_tilt_deg").get<double>();
+  s.lift = j.at("lift_m").get<double>();
+  s.resting_on = j.at("resting_on").get<std::string>();
+  const auto c = j.at("cog_displacement_m").get<std::array<double, 3>>();
+  s.cog_displacement = Vec3(c[0], c[1], c[2]);
+  s.max_node_speed = j.at("max_node_speed_m_s").get<double>();
+  return s;
+}
+
 namespace detail {
 
 inline void write_text(const std::string& path, const std::string& text) {
@@ -145,18 +174,18 @@ inline nlohmann::json energy_verdict_json(const EnergyVerdict& v) {
           {"text", v.text}};
 }
 
+// contact.start "settled": how long the items took, the speed left, and whether they settled (if not, the
+// item with the fastest node).
+inline nlohmann::json settled_start_json(const SettledStart& s) {
+  return {{"settling_time_s", s.settling_time},
+          {"max_node_speed_m_s", s.max_node_speed},
+          {"settled", s.settled},
+          {"fastest_item", s.settled ? nlohmann::json() : nlohmann::json(s.fastest_item)}};
+}
+
 inline nlohmann::json final_state_json(const std::vector<ItemFinalState>& items) {
   nlohmann::json a = nlohmann::json::array();
-  for (const auto& s : items)
-    a.push_back({{"item", s.name},
-                 {"state", s.state},
-                 {"slide_m", s.slide},
-                 {"tilt_deg", s.tilt_deg},
-                 {"max_tilt_deg", s.max_tilt_deg},
-                 {"lift_m", s.lift},
-                 {"resting_on", s.resting_on},
-                 {"cog_displacement_m", {s.cog_displacement.x(), s.cog_displacement.y(), s.cog_displacement.z()}},
-                 {"max_node_speed_m_s", s.max_node_speed}});
+  for (const auto& s : items) a.push_back(item_final_state_json(s));
   return a;
 }
 
@@ -724,9 +753,7 @@ class SummaryFile : public RunObserver {
         {"max_energy_imbalance_relative", sum.max_energy_imbalance},
         {"energy_verdict", detail::energy_verdict_json(sum.energy)},
         {"ground_motion_scale_factor", sum.ground_motion_scale},
-        {"settled_start", sum.settled_start ? nlohmann::json{{"settling_time_s", sum.settled_start->settling_time},
-                                                             {"max_node_speed_m_s", sum.settled_start->max_node_speed}}
-                                            : nlohmann::json()},
+        {"settled_start", sum.settled_start ? detail::settled_start_json(*sum.settled_start) : nlohmann::json()},
         {"ground_motion_peak_m_s2",
          {motion.peaks().x(), motion.peaks().y(), motion.peaks().z()}},
         {"final_state", detail::final_state_json(sum.items)},

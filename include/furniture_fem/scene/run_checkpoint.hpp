@@ -27,7 +27,7 @@ namespace furniture_fem {
 
 inline constexpr const char* checkpoint_file = "checkpoint.bin";
 // 2: the Figures observer keeps the energy series; 3: a settled start's figures and each item's start.
-inline constexpr std::string_view checkpoint_magic = "furniture_fem checkpoint 3";
+inline constexpr std::string_view checkpoint_magic = "furniture_fem checkpoint 4";
 
 // What a resumed run must share with the run that wrote the checkpoint: the scene and every run
 // option that changes a result or a file (not the threads, the progress bar or the checkpoint period).
@@ -53,6 +53,7 @@ struct RunnerState {
   double max_energy_imbalance = 0;   // RunSummary::max_energy_imbalance so far
   double wall_seconds = 0;           // spent before this part of the run
   double settling_time = -1, settled_speed = 0;  // RunSummary::settled_start; settling_time < 0: none
+  int settled = 1, fastest_item = -1;             // its settled and fastest_item (an index into the items)
 };
 
 namespace detail {

@@ -117,7 +117,11 @@ struct SectionForcePeak {
 // and the largest nodal speed they were left with.
 struct SettledStart {
   double settling_time = 0;  // s
-  double max_node_speed = 0;  // m/s
+  double max_node_speed = 0;  // m/s, at the end of the settling
+  // Whether every node was quiet for the quiet time before the cap (scene/runner.hpp, settle_at_rest); if
+  // not, the item whose node was fastest at the end (a room whose light members ring, a rocking item).
+  bool settled = true;
+  std::string fastest_item;
 };
 
 struct RunSummary {

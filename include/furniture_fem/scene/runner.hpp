@@ -191,6 +191,19 @@ class RunRecord {
   nlohmann::json j_;
 };
 
+// The index of the item named `name` in items, -1 if none (a checkpoint keeps an item by its index).
+inline int item_index(const std::vector<ItemInfo>& items, const std::string& name) {
+  for (std::size_t i = 0; i < items.size(); ++i)
+    if (items[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+// The name of the item that is body `body` ("" if none).
+inline std::string item_of_body(const std::vector<ItemInfo>& items, int body) {
+  for (const auto& it : items)
+    if (it.body == body) return it.name;
+  return {};
+}
+
 // The parts of a composed scene the loop needs, whatever its law and solver.
 struct ComposedScene {
   const Model& model;
@@ -351,7 +364,9 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
     trusted = saved.trusted;
     sum.max_energy_imbalance = saved.max_energy_imbalance;
     wall_before = saved.wall_seconds;
-    if (saved.settling_time >= 0) sum.settled_start = SettledStart{saved.settling_time, saved.settled_speed};
+    if (saved.settling_time >= 0)
+      sum.settled_start = SettledStart{saved.settling_time, saved.settled_speed, saved.settled != 0,
+                                       saved.fastest_item >= 0 ? run.items.at(saved.fastest_item).name : ""};
     if (record) record->note_resume(sim.time());
   } else {
     for (RunObserver* o : observers) o->begin(run);
@@ -360,10 +375,10 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
     return wall_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start.steady).count();
   };
   const auto checkpoint = [&] {
-    const SettledStart settled = sum.settled_start.value_or(SettledStart{-1, 0});
+    const SettledStart settled = sum.settled_start.value_or(SettledStart{-1, 0, true, {}});
     write_checkpoint(run.out_dir, fingerprint,
                      {run.row_energy, trusted, sum.max_energy_imbalance, wall_now(), settled.settling_time,
-                      settled.max_node_speed},
+                      settled.max_node_speed, settled.settled ? 1 : 0, item_index(run.items, settled.fastest_item)},
                      sim, observers);
   };
   auto last_checkpoint = std::chrono::steady_clock::now();
@@ -459,22 +474,27 @@ SettledStart settle_at_rest(const SceneSpec& spec, int threads, typename SceneSi
   SceneSimulation<Law, Solver> settling(settling_spec, 0, threads);
   auto& s = *settling.sim;
   s.set_table_acceleration([](double) { return Vec3::Zero(); });
+  int fastest_node = 0;
   const auto fastest = [&] {
     double v = 0;
-    for (int n = 0; n < settling.model->num_nodes(); ++n) v = std::max(v, s.velocity(n).template head<3>().norm());
+    for (int n = 0; n < settling.model->num_nodes(); ++n)
+      if (const double vn = s.velocity(n).template head<3>().norm(); vn > v) v = vn, fastest_node = n;
     return v;
   };
   SettledStart settled;
   double moving_at = 0;  // the last time a node was faster than settled_speed
+  const auto quiet = [&] { return settled.settling_time - moving_at >= settled_quiet_time - 0.5 * spec.dt; };
   do {
     s.step();
     if (const int n = s.first_non_finite_node(); n >= 0)
       throw SimulationError(s.time(), "contact.start \"settled\": the settling steps diverged at node " +
                                           std::to_string(n) + " (try a smaller dt)");
-    settled = {s.time(), fastest()};
+    settled.settling_time = s.time();
+    settled.max_node_speed = fastest();
     if (settled.max_node_speed >= settled_speed) moving_at = settled.settling_time;
-  } while (settled.settling_time < settling_max_time - 0.5 * spec.dt &&
-           settled.settling_time - moving_at < settled_quiet_time - 0.5 * spec.dt);
+  } while (settled.settling_time < settling_max_time - 0.5 * spec.dt && !quiet());
+  settled.settled = quiet();
+  if (!settled.settled) settled.fastest_item = item_of_body(settling.items, settling.model->node(fastest_node).body);
   StateWriter w;
   s.save_state(w);
   StateReader r(w.bytes(), "the settled start");

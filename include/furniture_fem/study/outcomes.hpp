@@ -19,21 +19,17 @@
 #include <vector>
 
 #include "../scene/observer.hpp"
+#include "../scene/observers.hpp"
 #include "../scene/run_scene.hpp"
 #include "realisation.hpp"
 
 namespace furniture_fem {
 
-// One body's outcome (separated cabinets give two: "<item>/lower", "<item>/upper").
-struct BodyOutcome {
-  std::string name;
-  std::string state;            // ItemFinalState::state: standing, slid, tilted, fell, overturned, resting_on_item, diverged
-  double slide = 0;             // m
-  double tilt_deg = 0, max_tilt_deg = 0;
-  double lift = 0;              // m
-  std::string resting_on;
-  // The largest magnitude over the run's steps of the summed contact force on the body from the
-  // floor, from the walls and from other items (N).
+// One body's outcome (separated cabinets give two: "<item>/lower", "<item>/upper"): its final state as
+// the run reports it (scene/run_summary.hpp; written with final_state.json's keys) and the largest
+// magnitude over the run's steps of the summed contact force on the body from the floor, from the walls
+// and from other items (N).
+struct BodyOutcome : ItemFinalState {
   double floor_force_peak = 0, wall_force_peak = 0, item_force_peak = 0;
 };
 
@@ -116,7 +112,7 @@ inline RunResult run_realisation(const StudySpec& s, long run, const std::atomic
     r.t_end = sum.t_end;
     for (std::size_t i = 0; i < sum.items.size(); ++i) {
       const ItemFinalState& f = sum.items[i];
-      BodyOutcome b{f.name, f.state, f.slide, f.tilt_deg, f.max_tilt_deg, f.lift, f.resting_on};
+      BodyOutcome b{f};
       if (i < order.bodies().size()) {
         const auto& pk = peaks.peaks(order.bodies()[i]);
         b.floor_force_peak = pk[0];
@@ -142,17 +138,13 @@ inline RunResult run_realisation(const StudySpec& s, long run, const std::atomic
 
 inline nlohmann::json to_json(const RunResult& r) {
   nlohmann::json bodies = nlohmann::json::array(), sections = nlohmann::json::array();
-  for (const auto& b : r.bodies)
-    bodies.push_back({{"name", b.name},
-                      {"state", b.state},
-                      {"slide", b.slide},
-                      {"tilt_deg", b.tilt_deg},
-                      {"max_tilt_deg", b.max_tilt_deg},
-                      {"lift", b.lift},
-                      {"resting_on", b.resting_on},
-                      {"floor_force_peak", b.floor_force_peak},
-                      {"wall_force_peak", b.wall_force_peak},
-                      {"item_force_peak", b.item_force_peak}});
+  for (const auto& b : r.bodies) {
+    nlohmann::json j = item_final_state_json(b);
+    j["floor_force_peak_N"] = b.floor_force_peak;
+    j["wall_force_peak_N"] = b.wall_force_peak;
+    j["item_force_peak_N"] = b.item_force_peak;
+    bodies.push_back(std::move(j));
+  }
   for (const auto& s : r.sections) sections.push_back({{"section", s.section}, {"abs_max", s.abs_max}});
   return {{"run", r.run},     {"realisation", r.realisation}, {"variant", r.variant},
           {"status", r.status}, {"diagnosis", r.diagnosis},   {"t_end", r.t_end},
@@ -170,11 +162,13 @@ inline RunResult run_result_from_json(const nlohmann::json& j) {
   r.diagnosis = j.at("diagnosis").get<std::string>();
   r.t_end = j.at("t_end").get<double>();
   r.wall_seconds = j.at("wall_seconds").get<double>();
-  for (const auto& b : j.at("bodies"))
-    r.bodies.push_back({b.at("name").get<std::string>(), b.at("state").get<std::string>(), b.at("slide").get<double>(),
-                        b.at("tilt_deg").get<double>(), b.at("max_tilt_deg").get<double>(), b.at("lift").get<double>(),
-                        b.at("resting_on").get<std::string>(), b.at("floor_force_peak").get<double>(),
-                        b.at("wall_force_peak").get<double>(), b.at("item_force_peak").get<double>()});
+  for (const auto& b : j.at("bodies")) {
+    BodyOutcome o{item_final_state_from_json(b)};
+    o.floor_force_peak = b.at("floor_force_peak_N").get<double>();
+    o.wall_force_peak = b.at("wall_force_peak_N").get<double>();
+    o.item_force_peak = b.at("item_force_peak_N").get<double>();
+    r.bodies.push_back(std::move(o));
+  }
   for (const auto& s : j.at("sections"))
     r.sections.push_back({s.at("section").get<std::string>(), s.at("abs_max").get<std::array<double, 6>>()});
   return r;
