@@ -15,7 +15,7 @@ namespace ffem_test {
 struct CantileverOptions {
   double length = 1.0;           // m
   int elements = 8;
-  bool pairs = false;            // ASI-Gauss pairs (MemberOptions::pairs)
+  bool pairs = true;             // ASI-Gauss pairs (MemberOptions::pairs, its default)
   double yield_stress = 245e6;   // Pa; 1e20 keeps it elastic
   bool vertical = false;         // along +Z instead of +X
 };
