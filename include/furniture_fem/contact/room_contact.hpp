@@ -260,8 +260,8 @@ class RoomContact {
 
   // The linearisations of the floor and wall forces of the last add_forces (none unless implicit).
   const std::vector<NodalContactTangent>& nodal_tangents() const { return tangents_; }
-  // The linearisations of the item-item pairs between two implicit bodies (the simulation solves two
-  // rigid ones together, and gives a flexible one its own side's terms), of the last add_forces.
+  // The linearisations of the item-item pairs between two rigid implicit bodies (the simulation
+  // solves such bodies together), of the last add_forces.
   const std::vector<PairContactTangent>& pair_tangents() const { return pair_tangents_; }
   // The floor and wall forces of the last add_forces on implicit bodies' nodes (node, force; a node
   // against two planes appears twice).

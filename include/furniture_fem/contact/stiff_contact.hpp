@@ -65,21 +65,19 @@ inline double lightest_node_mass(const Model& model, int body) {
   return lightest;
 }
 
-// The `stiff` law between two items. A spring or dashpot applied explicitly (outside the implicit step,
-// docs/contact/implicit_contact.md) is stable only while it is small against the node it acts on: the
-// item's floor spring (2.5 um under its weight) is ten times past that for a cabinet's nodes at dt 1 ms,
-// and configuration 3 blew up where the upper cabinet stands on the lower one (2026-11). So where a pair
-// may be explicit (an item whose contact is not inside the step) the spring is capped at
-// k = m / (4 dt^2) (omega dt = 0.5 for a node of mass m against a fixed surface); stacked items then
-// sink by about a millimetre instead of micrometres. The dashpot is capped at c = 0.2 m / dt
-// (c dt / m = 0.2, against the explicit dashpot's limit 2 / (1 + 2 gamma), 0.75 for the paper's
-// Newmark; zeta 0.2) in every case: inside the step the full dashpot's clamp (no pull) makes a stack
-// chatter and friction on the inflated normal force holds a box that should slide (measured; "Rigid
-// groups", "Flexible pairs" there). A node in several pairs adds their terms: hence the margins.
-inline void cap_item_pairs(ContactParams& p, double lightest_node_mass, double dt, bool pairs_implicit) {
+// The `stiff` law between two items. Item-item contact is evaluated explicitly (outside the implicit
+// step, docs/contact/implicit_contact.md), and a spring or dashpot applied explicitly is stable only
+// while it is small against the node it acts on: the item's floor spring (2.5 um under its weight)
+// is ten times past that for a cabinet's nodes at dt 1 ms, and configuration 3 blew up where the
+// upper cabinet stands on the lower one (2026-11). So between items the spring is capped at
+// k = m / (4 dt^2) (omega dt = 0.5 for a node of mass m against a fixed surface) and the dashpot at
+// c = 0.2 m / dt (c dt / m = 0.2, against the explicit dashpot's limit 2 / (1 + 2 gamma), 0.75 for
+// the paper's Newmark; zeta 0.2). A node in several pairs adds their terms: hence the margins.
+// Stacked items then sink by about a millimetre instead of micrometres.
+inline void cap_for_explicit_pairs(ContactParams& p, double lightest_node_mass, double dt) {
   if (!(lightest_node_mass > 0) || !std::isfinite(lightest_node_mass) || !(dt > 0)) return;
   const double k_max = 0.25 * lightest_node_mass / (dt * dt), c_max = 0.2 * lightest_node_mass / dt;
-  if (!pairs_implicit && p.k_lin > k_max) {
+  if (p.k_lin > k_max) {
     p.k_lin = k_max;
     p.k_hc = k_max / std::sqrt(ContactParams::stiff_resting_penetration);
   }

@@ -160,9 +160,7 @@ inline constexpr int contact_status_code(bool sticking, bool clamped) {
 // acts on body_a at `point` and -F on body_b; the contact points move with their segments' nodes
 // (shares 1 - s, s on a0, a1 and 1 - t, t on b0, b1), and F(x + dx, v + dv) ~ F - K d - C d', d the
 // relative displacement of a's point from b's. When both bodies are rigid the simulation solves them
-// in one system with these terms (rigid groups); otherwise each body's solve takes the terms of its own
-// side (the other body's motion in the step follows at its end: docs/contact/implicit_contact.md,
-// "Flexible pairs").
+// in one system with these terms (rigid groups); otherwise the force stays a load of the predictor.
 struct PairContactTangent {
   static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
   int body_a = -1, body_b = -1;
@@ -174,7 +172,6 @@ struct PairContactTangent {
   // A point off its segment (two rigid bodies' hulls, a0 == a1 and b0 == b1): its offset from the node
   // in the node's initial frame; it turns with the node (zero for element pairs).
   Vec3 arm_a0 = Vec3::Zero(), arm_b0 = Vec3::Zero();
-  int status = 0;  // the contact's regime (contact_status_code), which a flexible body's reused factor watches
   bool has_arms() const { return !arm_a0.isZero(0) || !arm_b0.isZero(0); }
 };
 
@@ -665,9 +662,7 @@ class Simulation {
   // Rigid bodies that touch each other through pairs with tangents are solved in one system (6 per
   // body, coupled by the pairs' terms), so a stacked item rests on another as on the floor. Groups
   // are rebuilt at every evaluation of the contact; a group's first (lowest) body solves it for all.
-  // A pair with a flexible body puts its terms on each side's own system (pair_active_ 2: the body
-  // solves against the other's predicted contact point; the end of the step adds the rest, as a
-  // carried-over unbalance; docs/contact/implicit_contact.md, "Flexible pairs").
+  // Pairs with a flexible body stay loads of the predictor (docs/contact/implicit_contact.md).
   int group_of(int b) const;
 
   void gather_rigid_groups();
@@ -681,20 +676,6 @@ class Simulation {
   // the shares, and the moments that put it at the contact point; calls add(node, 6-vector).
   template <class Add>
   void share_pair_force(const PairContactTangent& p, const Vec3& F, Add&& add) const;
-  // The same on one side's two nodes only (side a: F, side b: -F), reading that side's nodes only.
-  template <class Add>
-  void share_pair_force_on(const PairContactTangent& p, bool side_a, const Vec3& F, Add&& add) const;
-  // A segment pair's contact point on one side, and its velocity, now.
-  Vec3 pair_point(const PairContactTangent& p, bool side_a) const;
-  Vec3 pair_point_velocity(const PairContactTangent& p, bool side_a) const;
-  // A pair between a flexible body and another (pair_active_ 2): the terms of each side on that body's
-  // own nodes, (1 - af) (K + gamma / (beta dt) C) by the contact point's shares (the row sums of the
-  // consistent term: exact for the segment's common translation, and positive), into the systems'
-  // contact terms; only `body`'s side when body >= 0.
-  void add_pair_own_terms(int body = -1);
-  // The body's own side of its pairs with a flexible body moved in fc1_ from their last shift to the
-  // current state (a body solved again sees its pairs' forces where it is now).
-  void carry_own_pairs_to_current_state(std::span<const int> members);
 
   // A group's step in carry-over mode: every member's residual, the joint solve, then each member
   // placed, checked and committed (none is committed when one is not finite).
@@ -915,16 +896,8 @@ class Simulation {
   Eigen::VectorXd an_, r_, fint_, fext0_, fext1_, fc0_, fc1_, fnet0_, mass_, nodal_load_, fgrav_;
   Eigen::VectorXd contact_delta_;
   std::vector<Vec6> predictor_shift_;  // the linearised contact forces' shift from v_contact_ to v_ at the predictor
-  std::vector<Vec3> pair_predictor_shift_;    // the same for the pairs inside the step
-  std::vector<char> pair_active_;             // per pair tangent: 1 inside a rigid group's solve, 2 each side its own
-  // A pair with a flexible body (pair_active_ 2) within a step: its shift at the predictor, each side's
-  // contact point and velocity there, and the shift each side's nodes hold in fc1_. A body solved
-  // again moves its own side by its own motion only (the bodies of a step may be solved in parallel).
-  struct OwnSidePair {
-    Vec3 shift0 = Vec3::Zero(), xa = Vec3::Zero(), va = Vec3::Zero(), xb = Vec3::Zero(), vb = Vec3::Zero();
-    Vec3 on_a = Vec3::Zero(), on_b = Vec3::Zero();
-  };
-  std::vector<OwnSidePair> own_side_pairs_;   // per pair tangent; rebuilt at every step's predictor
+  std::vector<Vec3> pair_predictor_shift_;    // the same for the pairs of rigid groups
+  std::vector<char> pair_active_;             // per pair tangent: inside a rigid group's solve
   std::vector<char> contact_iterated_;        // per body: this step's plane forces resolved at its end (fc1_)
   std::vector<std::vector<int>> groups_;      // rigid groups: their bodies, ascending
   std::vector<std::vector<int>> group_pairs_; // each group's pair tangents

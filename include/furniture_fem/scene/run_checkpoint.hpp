@@ -28,7 +28,7 @@ namespace furniture_fem {
 inline constexpr const char* checkpoint_file = "checkpoint.bin";
 // 2: the Figures observer keeps the energy series; 3: a settled start's figures and each item's start;
 // 4: whether the settling finished, and its fastest item.
-inline constexpr std::string_view checkpoint_magic = "furniture_fem checkpoint 5";
+inline constexpr std::string_view checkpoint_magic = "furniture_fem checkpoint 4";
 
 // What a resumed run must share with the run that wrote the checkpoint: the scene and every run
 // option that changes a result or a file (not the threads, the progress bar or the checkpoint period).

@@ -254,19 +254,18 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
                                                     const std::vector<ItemInfo>& items) {
   std::vector<BodyContact> out(model.num_bodies());
   const SceneLawInfo& law = scene_law(s.contact.law);
+  const LawSetup setup{s, model, items};
   const auto apply = [&](ContactParams& p, const ContactOverrides& o) {
     for (const auto& key : contact_parameters)
       if (o.*(key.field)) key.apply(p, *(o.*(key.field)));
   };
   // Floor and wall contact inside the implicit step where the scene asks for it; friction sticks only
-  // there (a stick spring applied explicitly would be unstable). Two implicit items also have their
-  // pairs inside the step (two rigid ones solved together, a flexible one with its own side's terms);
-  // every other pair is explicit.
+  // there (a stick spring applied explicitly would be unstable). Two rigid implicit items also have
+  // their pairs inside the step (solved together); every other pair is explicit.
   const auto implicit_for = [&](const auto& it) {
     const ImplicitContact implicit = implicit_contact(s.contact);
     return implicit == ImplicitContact::all || (implicit == ImplicitContact::rigid && item_is_rigid(s, it));
   };
-  const LawSetup setup{s, model, items, std::all_of(items.begin(), items.end(), implicit_for)};
   for (const auto& it : items) {
     BodyContact bc;
     const ItemContact& c = it.contact;

@@ -49,11 +49,10 @@ inline void RoomContact<Law>::element_contacts(const ContactView& view, Eigen::V
     const auto nf = evaluate_segment_pair(law_, segment_pair(view, ea, eb), pair_params(model, ea, eb), st);
     if (pair_history_ && nf.in_contact) pair_trial_.set(key(ea, eb), st);
     if (!nf.in_contact) continue;
-    if (implicit && bodies_[A.body].implicit && bodies_[B.body].implicit) {
+    if (implicit && rigid_[A.body] && rigid_[B.body] && bodies_[A.body].implicit && bodies_[B.body].implicit) {
       const auto& c = nf.closest;
       pair_tangents_.push_back({A.body, B.body, A.n1, A.n2, B.n1, B.n2, c.s, c.t, 0.5 * (c.p_WA + c.p_WB),
-                                nf.force.K, nf.force.C, c.p_WA - c.p_WB, nf.kinematics.v, Vec3::Zero(),
-                                Vec3::Zero(), regime_of(nf.force)});
+                                nf.force.K, nf.force.C, c.p_WA - c.p_WB, nf.kinematics.v});
       implicit_pairs_.push_back({ea, eb, reported_pair_force(A.body, B.body, nf)});
     }
     f.template segment<3>(6 * A.n1) += nf.on_a0;

@@ -70,12 +70,10 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::replace_plan
   contact_iterated_[b] = 1;
   used = std::move(now);
   set_body_contact_terms(systems_[b], used.tangents);
-  add_pair_own_terms(b);
 }
 
 template <class Element, class Integrator, class LinearSolver, class Contact>
 inline void Simulation<Element, Integrator, LinearSolver, Contact>::newton_step_from_current_state(std::span<const int> members) {
-  carry_own_pairs_to_current_state(members);
   if (const int b = members.front(); !systems_[b].rigid) {  // flexible: never grouped
     double num = 0, den = 0;
     residual_body(systems_[b], fext1_, num, den);
@@ -100,29 +98,6 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::carry_group_
       const Vec3 shift = pair_shift(pairs[k]);
       share_pair_force(pairs[k], shift - pair_predictor_shift_[k], [&](int node, const Vec6& w) { fc1_.segment<6>(6 * node) += w; });
       pair_predictor_shift_[k] = shift;
-    }
-  }
-}
-
-template <class Element, class Integrator, class LinearSolver, class Contact>
-inline void Simulation<Element, Integrator, LinearSolver, Contact>::carry_own_pairs_to_current_state(std::span<const int> members) {
-  if constexpr (PairTangentPolicy<Contact>) {
-    const auto& pairs = contact_.pair_tangents();
-    const auto into_fc1 = [&](int node, const Vec6& w) { fc1_.segment<6>(6 * node) += w; };
-    for (size_t k = 0; k < pair_active_.size(); ++k) {
-      if (pair_active_[k] != 2) continue;
-      const auto& p = pairs[k];
-      OwnSidePair& o = own_side_pairs_[k];
-      if (std::find(members.begin(), members.end(), p.body_a) != members.end()) {
-        const Vec3 shift = o.shift0 - (p.K * (pair_point(p, true) - o.xa) + p.C * (pair_point_velocity(p, true) - o.va));
-        share_pair_force_on(p, true, shift - o.on_a, into_fc1);
-        o.on_a = shift;
-      }
-      if (std::find(members.begin(), members.end(), p.body_b) != members.end()) {
-        const Vec3 shift = o.shift0 + (p.K * (pair_point(p, false) - o.xb) + p.C * (pair_point_velocity(p, false) - o.vb));
-        share_pair_force_on(p, false, shift - o.on_b, into_fc1);
-        o.on_b = shift;
-      }
     }
   }
 }

@@ -37,28 +37,6 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::gather_conta
     }
   }
   gather_rigid_groups();
-  add_pair_own_terms();
-}
-
-template <class Element, class Integrator, class LinearSolver, class Contact>
-inline void Simulation<Element, Integrator, LinearSolver, Contact>::add_pair_own_terms(int body) {
-  if constexpr (PairTangentPolicy<Contact>) {
-    const auto& pairs = contact_.pair_tangents();
-    const double kf = 1 - coef_.alpha_f, cf = coef_.gamma / (coef_.beta * opt_.dt);
-    const auto put = [&](int b, int n0, int n1, double share1, int status, const Mat3& k) {
-      if (body >= 0 && b != body) return;
-      auto& bs = systems_[b];
-      bs.contact.push_back({local_index_[n0], status, (1 - share1) * k, Vec3::Zero()});
-      bs.contact.push_back({local_index_[n1], status, share1 * k, Vec3::Zero()});
-    };
-    for (size_t i = 0; i < pair_active_.size(); ++i) {
-      if (pair_active_[i] != 2) continue;
-      const auto& p = pairs[i];
-      const Mat3 k = kf * (p.K + cf * p.C);
-      put(p.body_a, p.a0, p.a1, p.s, p.status, k);
-      put(p.body_b, p.b0, p.b1, p.t, p.status, k);
-    }
-  }
 }
 
 template <class Element, class Integrator, class LinearSolver, class Contact>
@@ -85,11 +63,7 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::gather_rigid
     pair_active_.assign(pairs.size(), 0);
     for (size_t k = 0; k < pairs.size(); ++k) {
       const auto& p = pairs[k];
-      if (p.body_a == p.body_b) continue;
-      if (!systems_[p.body_a].rigid || !systems_[p.body_b].rigid) {
-        pair_active_[k] = 2;  // each side its own terms (add_pair_own_terms)
-        continue;
-      }
+      if (p.body_a == p.body_b || !systems_[p.body_a].rigid || !systems_[p.body_b].rigid) continue;
       pair_active_[k] = 1;
       const int ra = find(p.body_a), rb = find(p.body_b);
       if (ra != rb) root[std::max(ra, rb)] = std::min(ra, rb);
@@ -97,7 +71,7 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::gather_rigid
     std::vector<int> group_of_root(nb, -1);
     group_of_.assign(nb, -1);
     for (size_t k = 0; k < pairs.size(); ++k) {
-      if (pair_active_[k] != 1) continue;
+      if (!pair_active_[k]) continue;
       const int r = find(pairs[k].body_a);
       if (group_of_root[r] < 0) {
         group_of_root[r] = static_cast<int>(groups_.size());
@@ -152,31 +126,6 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::share_pair_f
 }
 
 template <class Element, class Integrator, class LinearSolver, class Contact>
-template <class Add>
-inline void Simulation<Element, Integrator, LinearSolver, Contact>::share_pair_force_on(const PairContactTangent& p, bool side_a, const Vec3& F, Add&& add) const {
-  const Vec3 f = side_a ? F : Vec3(-F);
-  const Vec3 m = (p.point - pair_point(p, side_a)).cross(f);
-  const double share1 = side_a ? p.s : p.t;
-  Vec6 w;
-  w << (1 - share1) * f, (1 - share1) * m;
-  add(side_a ? p.a0 : p.b0, w);
-  w << share1 * f, share1 * m;
-  add(side_a ? p.a1 : p.b1, w);
-}
-
-template <class Element, class Integrator, class LinearSolver, class Contact>
-inline Vec3 Simulation<Element, Integrator, LinearSolver, Contact>::pair_point(const PairContactTangent& p, bool side_a) const {
-  return side_a ? Vec3((1 - p.s) * x_[p.a0] + p.s * x_[p.a1]) : Vec3((1 - p.t) * x_[p.b0] + p.t * x_[p.b1]);
-}
-
-template <class Element, class Integrator, class LinearSolver, class Contact>
-inline Vec3 Simulation<Element, Integrator, LinearSolver, Contact>::pair_point_velocity(const PairContactTangent& p, bool side_a) const {
-  const auto v = [&](int n) { return Vec3(v_.segment<3>(6 * n)); };
-  return side_a ? Vec3((1 - p.s) * v(p.a0) + p.s * v(p.a1)) : Vec3((1 - p.t) * v(p.b0) + p.t * v(p.b1));
-}
-
-
-template <class Element, class Integrator, class LinearSolver, class Contact>
 inline void Simulation<Element, Integrator, LinearSolver, Contact>::solve_and_commit_group(const std::vector<int>& members) {
   for (int m : members) {
     BodyStepSums& s = sums_[m];
@@ -221,17 +170,10 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::linearised_c
   if constexpr (PairTangentPolicy<Contact>) {
     const auto& pairs = contact_.pair_tangents();
     pair_predictor_shift_.assign(pairs.size(), Vec3::Zero());
-    own_side_pairs_.clear();
     for (size_t k = 0; k < pair_active_.size(); ++k) {
       if (!pair_active_[k]) continue;
-      const auto& p = pairs[k];
-      pair_predictor_shift_[k] = pair_shift(p);
-      share_pair_force(p, pair_predictor_shift_[k], [&](int n, const Vec6& w) { fc1_.segment<6>(6 * n) += w; });
-      if (pair_active_[k] != 2) continue;
-      own_side_pairs_.resize(pairs.size());
-      const Vec3 shift = pair_predictor_shift_[k];
-      own_side_pairs_[k] = {shift, pair_point(p, true), pair_point_velocity(p, true), pair_point(p, false),
-                            pair_point_velocity(p, false), shift, shift};
+      pair_predictor_shift_[k] = pair_shift(pairs[k]);
+      share_pair_force(pairs[k], pair_predictor_shift_[k], [&](int n, const Vec6& w) { fc1_.segment<6>(6 * n) += w; });
     }
   }
 }
@@ -261,22 +203,15 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::contact_at_e
     }
     if constexpr (PairTangentPolicy<Contact>) {
       const auto& pairs = contact_.pair_tangents();
-      const auto to_end = [&](int n, const Vec6& w) {
-        fc0_.segment<6>(6 * n) += w;
-        fnet0_.segment<6>(6 * n) += w;
-        ledger_.contact_work += 0.5 * Du_.segment<6>(6 * n).dot(w);
-        ledger_.contact_work_applied += applied.of_end_change(
-            applied.path(Du_.segment<6>(6 * n), vn_.segment<6>(6 * n), v_.segment<6>(6 * n)), w);
-      };
       for (size_t k = 0; k < pair_active_.size(); ++k) {
         if (!pair_active_[k]) continue;
-        const Vec3 end = pair_shift(pairs[k]);
-        if (pair_active_[k] == 1) {
-          share_pair_force(pairs[k], end - pair_predictor_shift_[k], to_end);
-        } else {  // each side from where its own solve left it
-          share_pair_force_on(pairs[k], true, end - own_side_pairs_[k].on_a, to_end);
-          share_pair_force_on(pairs[k], false, end - own_side_pairs_[k].on_b, to_end);
-        }
+        share_pair_force(pairs[k], pair_shift(pairs[k]) - pair_predictor_shift_[k], [&](int n, const Vec6& w) {
+          fc0_.segment<6>(6 * n) += w;
+          fnet0_.segment<6>(6 * n) += w;
+          ledger_.contact_work += 0.5 * Du_.segment<6>(6 * n).dot(w);
+          ledger_.contact_work_applied += applied.of_end_change(
+              applied.path(Du_.segment<6>(6 * n), vn_.segment<6>(6 * n), v_.segment<6>(6 * n)), w);
+        });
       }
     }
     contact_delta_.setZero();

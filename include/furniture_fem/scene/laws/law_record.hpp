@@ -71,7 +71,6 @@ struct LawSetup {
   const SceneSpec& spec;
   const Model& model;
   const std::vector<ItemInfo>& items;
-  bool every_pair_implicit = false;  // every item's contact inside the implicit step, so every item pair's too
 };
 
 // A record derives from this and overrides what differs.

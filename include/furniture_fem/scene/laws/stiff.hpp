@@ -23,13 +23,13 @@ struct StiffSceneLaw : SceneLawDefaults {
   static void item_base(ContactParams& p, const LawSetup& s, const ItemInfo& item) {
     set_stiff_contact(s.model, item.body, p);
   }
-  // One cap for the scene (a pair takes the mean of two items' values), from its lightest node: the
-  // dashpot always, the spring unless every pair is inside the step (every item's contact is: its
-  // pairs then are, rigid groups and flexible pairs; cap_item_pairs says why).
+  // One cap for the scene (a pair takes the mean of two items' values), from its lightest node. Kept for
+  // rigid groups too: uncapped, the stiff dashpot's clamp makes a rigid stack chatter
+  // (docs/contact/implicit_contact.md, "Rigid groups").
   static void item_pair(ContactParams& p, const LawSetup& s) {
     double lightest = std::numeric_limits<double>::infinity();
     for (const auto& it : s.items) lightest = std::min(lightest, lightest_node_mass(s.model, it.body));
-    cap_item_pairs(p, lightest, s.spec.dt, s.every_pair_implicit);
+    cap_for_explicit_pairs(p, lightest, s.spec.dt);
   }
 };
 
