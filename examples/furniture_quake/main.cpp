@@ -167,7 +167,9 @@ int report(const SceneSpec& spec, const RunSummary& s) {
                 target->measure == ScaleMeasure::pga ? "pga" : "pgv", target->value,
                 target->measure == ScaleMeasure::pga ? "m/s^2" : "m/s", spec.ground_motion.level);
   if (const auto& st = s.settled_start) {
-    if (st->settled)
+    if (st->interrupted)
+      std::printf("  settled start: interrupted after %.2f s of settling\n", st->settling_time);
+    else if (st->settled)
       std::printf("  settled start: the items settled in %.2f s\n", st->settling_time);
     else
       std::printf("  settled start: NOT settled after %.2f s: a node of %s still moves at %.3g mm/s; the run starts "

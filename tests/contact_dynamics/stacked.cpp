@@ -143,6 +143,28 @@ TEST_CASE("a rigid box on another, held by 0.9 mu g, does not creep", "[contact_
     });
 }
 
+namespace {
+
+// A table acceleration A along +x from t0 on: the scene run to t0 + T, returning the growth of
+// velocity() between T/2 and T after the onset divided by T/2 (past the onset's transient), and the
+// upper box's displacement on the lower one from t0.
+struct Onset {
+  double acceleration;
+  Vec3 moved;
+};
+template <class Scene, class Velocity>
+Onset accelerate_from(Scene& s, double A, double t0, double T, Velocity&& velocity) {
+  s.sim->set_table_acceleration([=](double t) { return Vec3(t > t0 ? A : 0.0, 0, 0); });
+  s.sim->run_until(t0);
+  const Vec3 r0 = s.relative();
+  s.sim->run_until(t0 + 0.5 * T);
+  const double v_half = velocity();
+  s.sim->run_until(t0 + T);
+  return {(velocity() - v_half) / (0.5 * T), s.relative() - r0};
+}
+
+}  // namespace
+
 TEST_CASE("a rigid box on another slides on it as Coulomb says", "[contact_dynamics][stacked][implicit]") {
   // Table acceleration A along +x from t0 on: in the table's frame the upper box is pushed by -m A
   // and held by mu m g, so relative to the lower box (held by the floor's friction 0.9) it accelerates
@@ -151,18 +173,12 @@ TEST_CASE("a rigid box on another slides on it as Coulomb says", "[contact_dynam
   // about 1 mm: +0.9 to +2.7 % of it, measured), and the slide against (A - mu g) T^2 / 2 within 1.5 mm.
   for (const auto& [mu, ratio] : {std::pair{0.2, 1.5}, std::pair{0.2, 2.5}, std::pair{0.3, 1.5}})
     for_both_laws(mu, true, [&, mu = mu, ratio = ratio](const char* law, auto& s) {
-      const double A = ratio * mu * g0, t0 = 0.2, T = 0.25;  // slides of 31 to 92 mm: still across
-      s.sim->set_table_acceleration([=](double t) { return Vec3(t > t0 ? A : 0.0, 0, 0); });
-      const auto relative_velocity = [&] {
+      const double A = ratio * mu * g0, T = 0.25;  // slides of 31 to 92 mm: still across
+      const Onset o = accelerate_from(s, A, 0.2, T, [&] {
         return (centre_of_mass_velocity(*s.sim, s.upper.body) - centre_of_mass_velocity(*s.sim, s.lower.body)).x();
-      };
-      s.sim->run_until(t0);
-      const Vec3 r0 = s.relative();
-      s.sim->run_until(t0 + 0.5 * T);
-      const double v_half = relative_velocity();
-      s.sim->run_until(t0 + T);
-      const double a = (relative_velocity() - v_half) / (0.5 * T), a_closed = -(A - mu * g0);
-      const double slide = (s.relative() - r0).x(), closed = 0.5 * a_closed * T * T;
+      });
+      const double a = o.acceleration, a_closed = -(A - mu * g0);
+      const double slide = o.moved.x(), closed = 0.5 * a_closed * T * T;
       report("S3 stacked slide, %s, mu %.1f, A %.1f mu g: relative acceleration %.4f against %.4f m/s^2 (%+.2f %%); "
              "slide %.5f m against %.5f m (%+.2f %%)",
              law, mu, ratio, a, a_closed, 100 * (a / a_closed - 1), slide, closed, 100 * (slide / closed - 1));
@@ -183,19 +199,13 @@ TEST_CASE("a rigid box on another slides on it as Coulomb says", "[contact_dynam
 TEST_CASE("a rigid stack slides on the floor as one, as Coulomb says", "[contact_dynamics][stacked][implicit]") {
   for (const auto& [mu_f, ratio] : {std::pair{0.2, 1.5}, std::pair{0.3, 2.0}}) {
     StackScene<SpringDashpotLaw> s(stiff_spring, 0.9, true, {}, mu_f);
-    const double A = ratio * mu_f * g0, t0 = 0.2, T = 0.25;
-    s.sim->set_table_acceleration([=](double t) { return Vec3(t > t0 ? A : 0.0, 0, 0); });
-    const auto stack_velocity = [&] {
+    const double A = ratio * mu_f * g0;
+    const Onset o = accelerate_from(s, A, 0.2, 0.25, [&] {
       return (s.lower.mass * centre_of_mass_velocity(*s.sim, s.lower.body) +
               s.upper.mass * centre_of_mass_velocity(*s.sim, s.upper.body)).x() / (s.lower.mass + s.upper.mass);
-    };
-    s.sim->run_until(t0);
-    const Vec3 r0 = s.relative();
-    s.sim->run_until(t0 + 0.5 * T);
-    const double v_half = stack_velocity();
-    s.sim->run_until(t0 + T);
-    const double a = (stack_velocity() - v_half) / (0.5 * T), a_closed = -(A - mu_f * g0);
-    const double slip = (s.relative() - r0).head<2>().norm();
+    });
+    const double a = o.acceleration, a_closed = -(A - mu_f * g0);
+    const double slip = o.moved.head<2>().norm();
     report("S4 stack sliding on the floor, rigid, mu_f %.1f, A %.1f mu_f g: acceleration %.4f against %.4f m/s^2 "
            "(%+.2f %%); the upper's slip on the lower %.2e m", mu_f, ratio, a, a_closed, 100 * (a / a_closed - 1), slip);
     INFO("mu_f " << mu_f << " A/(mu_f g) " << ratio);

@@ -9,6 +9,8 @@
 
 #include <furniture_fem/scene/scene_runner.hpp>
 
+#include <atomic>
+#include <filesystem>
 #include <string>
 
 using namespace furniture_fem;
@@ -121,4 +123,33 @@ TEST_CASE("a scene that does not settle says so, naming the item", "[scene][sett
   CHECK(r.settled_start->max_node_speed > 1e-4);
   CHECK_FALSE(r.settled_start->settled);
   CHECK(r.settled_start->fastest_item == "tall");
+}
+
+TEST_CASE("a stop request while the items settle ends the run at t = 0, with no checkpoint", "[scene][settled][stop]") {
+  // The settling looked at no stop request (issue 51): a large room's 5 s of settling could not be
+  // interrupted, and the run then stopped at t = 0 with a checkpoint of the settled state. Now a stop
+  // request ends the settling before its next step; the run does not start, and no checkpoint is
+  // written (a resume would start from a state that had not settled).
+  const std::filesystem::path out = std::filesystem::path(FFEM_TEST_TMP) / "settled_stop";
+  std::filesystem::remove_all(out);
+  json j = side_table("rigid", "paper", "settled", 1.0);
+  j["outputs"]["folder"] = out.string();
+  const SceneSpec spec = parse_scene_json(j, "settled_stop.json");
+  validate(spec);
+  std::atomic<bool> stop{true};
+  RunOptions o;
+  o.out_dir = out.string();
+  o.progress = false;
+  o.stop = &stop;
+  const RunSummary r = run_scene(spec, o);
+  CHECK(r.status == "stopped");
+  CHECK(r.steps == 0);
+  CHECK(r.t_end == 0.0);
+  REQUIRE(r.settled_start);
+  CHECK(r.settled_start->interrupted);
+  CHECK_FALSE(r.settled_start->settled);
+  CHECK(r.settled_start->settling_time == 0.0);
+  CHECK_THAT(r.diagnosis, Contains("settled") && Contains("no checkpoint"));
+  CHECK(std::filesystem::exists(out / "summary.json"));
+  CHECK_FALSE(std::filesystem::exists(out / "checkpoint.bin"));
 }

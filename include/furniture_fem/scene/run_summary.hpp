@@ -122,6 +122,9 @@ struct SettledStart {
   // not, the item whose node was fastest at the end (a room whose light members ring, a rocking item).
   bool settled = true;
   std::string fastest_item;
+  // A stop request (Ctrl-C) ended the settling: the run does not start (it stops at t = 0 with no
+  // checkpoint: a resume would start from a state that had not settled).
+  bool interrupted = false;
 };
 
 struct RunSummary {

@@ -10,6 +10,7 @@
 // stop request (Ctrl-C), a diverging step or a step that creates energy ends the run early, with
 // everything written so far readable and the reason in the summary.
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <cmath>
@@ -389,6 +390,12 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
       if (opt.stop && opt.stop->load()) {
         sum.status = "stopped";
         sum.diagnosis = "stopped by the user (interrupt) at t = " + std::to_string(sim.time()) + " s";
+        if (sum.settled_start && sum.settled_start->interrupted) {
+          sum.diagnosis += " while the items settled (contact.start \"settled\", after " +
+                           std::to_string(sum.settled_start->settling_time) +
+                           " s of settling): nothing run, no checkpoint; run it again";
+          break;
+        }
         if (!run.out_dir.empty()) {
           checkpoint();
           sum.diagnosis += "; resume with --resume (RunOptions::resume)";
@@ -465,9 +472,11 @@ inline constexpr double settled_quiet_time = 0.2, settling_max_time = 5.0;
 
 // Steps a copy of the scene with the table still and the raised regularisation until every node has been
 // slower than settled_speed for settled_quiet_time (at most settling_max_time), then loads its state into
-// `sim` at rest at t = 0 (Simulation::restart_at_rest).
+// `sim` at rest at t = 0 (Simulation::restart_at_rest). A stop request ends it before its next step
+// (`interrupted`, `sim` left as placed).
 template <class Law, class Solver>
-SettledStart settle_at_rest(const SceneSpec& spec, int threads, typename SceneSimulation<Law, Solver>::Sim& sim) {
+SettledStart settle_at_rest(const SceneSpec& spec, int threads, typename SceneSimulation<Law, Solver>::Sim& sim,
+                            const std::atomic<bool>* stop = nullptr) {
   SceneSpec settling_spec = spec;
   settling_spec.contact.velocity_regularisation =
       std::max(spec.contact.velocity_regularisation, settling_velocity_regularisation);
@@ -485,6 +494,11 @@ SettledStart settle_at_rest(const SceneSpec& spec, int threads, typename SceneSi
   double moving_at = 0;  // the last time a node was faster than settled_speed
   const auto quiet = [&] { return settled.settling_time - moving_at >= settled_quiet_time - 0.5 * spec.dt; };
   do {
+    if (stop && stop->load()) {
+      settled.settled = false;
+      settled.interrupted = true;
+      return settled;
+    }
     s.step();
     if (const int n = s.first_non_finite_node(); n >= 0)
       throw SimulationError(s.time(), "contact.start \"settled\": the settling steps diverged at node " +
@@ -511,7 +525,7 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt, const std:
   std::optional<SettledStart> settled;
   // A run going on from its checkpoint has its settled state there.
   if (spec.contact.start == ContactStart::settled && !opt.resume)
-    settled = settle_at_rest<Law, Solver>(spec, opt.threads, *scene.sim);
+    settled = settle_at_rest<Law, Solver>(spec, opt.threads, *scene.sim, opt.stop);
   SimulationViewOf<typename SceneSimulation<Law, Solver>::Sim> view(*scene.sim);
   return run_observed(
       spec, opt, {*scene.model, scene.items, scene.motion, scene.rigid_bodies, view, scene.motion_scale, settled}, extra,
