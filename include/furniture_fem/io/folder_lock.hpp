@@ -20,6 +20,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <string>
@@ -41,8 +42,7 @@ inline long read_lock_pid(int fd) {
   char buf[32] = {};
   const ssize_t n = pread(fd, buf, sizeof buf - 1, 0);
   if (n <= 0) return 0;
-  char* end = nullptr;
-  const long pid = std::strtol(buf, &end, 10);
+  const long pid = std::strtol(buf, nullptr, 10);
   return pid > 0 ? pid : 0;
 }
 
