@@ -1,4 +1,5 @@
 #pragma once
-// furniture_fem/io.hpp: the io module (CSV tables, VTU/PVD series).
+// furniture_fem/io.hpp: the io module (CSV tables, VTU/PVD series, a results folder's lock).
 #include "io/csv.hpp"
+#include "io/folder_lock.hpp"
 #include "io/vtk.hpp"

@@ -142,6 +142,34 @@ foreach(signal TERM INT)
   expect_run_status(stopped_${signal} interrupted)
 endforeach()
 
+# One run per folder (docs/command_line.md, "A folder in use"): two runs started together on one folder,
+# one is refused (exit 1); while a run goes on, a second one with --overwrite and a --resume are refused,
+# naming its process; after it is killed with SIGKILL, its lock is gone and a run goes ahead.
+set(run "\"$0\" --duration 1 --quiet --no-figures --out together & p=$!
+         \"$0\" --duration 1 --quiet --no-figures --out together & q=$!
+         wait $p; a=$?; wait $q; echo \"codes $a $?\"")
+execute_process(COMMAND sh -c "${run}" ${PROGRAM} WORKING_DIRECTORY ${WORK_DIR} TIMEOUT 300
+                RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+verdict(0 "codes (0 1|1 0)" "${out}" "two runs started together on one folder")
+verdict(0 "in use by process [0-9]+|still writing there" "${err}" "two runs started together on one folder")
+set(run "\"$0\" --duration 10 --quiet --no-figures --checkpoint-every 0.2 --out busy & p=$!
+         i=0; while [ ! -f busy/checkpoint.bin ] && [ $i -lt 1200 ]; do sleep 0.1; i=$((i + 1)); done
+         \"$0\" --duration 10 --quiet --no-figures --out busy --overwrite; a=$?
+         \"$0\" --duration 10 --quiet --no-figures --checkpoint-every 0.2 --resume busy; b=$?
+         echo \"holder $p overwrite $a resume $b\"; kill -KILL $p; wait $p
+         \"$0\" --duration 0.05 --quiet --no-figures --out busy --overwrite; echo \"after the kill $?\"")
+execute_process(COMMAND sh -c "${run}" ${PROGRAM} WORKING_DIRECTORY ${WORK_DIR} TIMEOUT 300
+                RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+string(REGEX MATCH "holder ([0-9]+)" holder "${out}")
+set(holder "${CMAKE_MATCH_1}")
+verdict(0 "holder ${holder} overwrite 1 resume 1.*after the kill 0" "${out}" "--overwrite and --resume on a busy folder")
+string(REGEX MATCHALL "error: results folder 'busy' is in use by process ${holder} " named "${err}")
+list(LENGTH named named)
+if(NOT holder OR NOT named EQUAL 2)
+  message(SEND_ERROR "a busy folder: expected two refusals naming process '${holder}', got:\n${err}")
+  math(EXPR failures "${failures} + 1")
+endif()
+
 # SIGTERM while the scene is read: the scene is a FIFO, so the program waits in the reading phase until
 # the test writes the scene into it, after the signal. It must end at once after reading, nothing run.
 set(run "mkfifo fifo.json; \"$0\" fifo.json --quiet --no-figures --out fifo & p=$!; sleep 0.5; kill -TERM $p;

@@ -94,6 +94,26 @@ if(NOT code EQUAL 1 OR NOT text MATCHES "--resume continues it")
   fail("a finished study's folder without --resume: expected exit 1, got ${code}: ${text}")
 endif()
 
+# One study per folder (docs/study/studies.md): a --resume started while the study runs is refused,
+# naming its process; once that process is killed (SIGKILL), --resume goes on: no stale lock.
+set(run "\"$0\" blocks.json --out busy --workers 1 --quiet & p=$!
+         i=0; while [ ! -f busy/study.json ] && [ $i -lt 600 ]; do sleep 0.1; i=$((i + 1)); done
+         \"$0\" blocks.json --out busy --resume --quiet; a=$?
+         echo \"holder $p resume $a\"; kill -KILL $p; wait $p
+         \"$0\" blocks.json --out busy --resume --quiet; echo \"after the kill $?\"")
+execute_process(COMMAND sh -c "${run}" ${PROGRAM} WORKING_DIRECTORY ${WORK_DIR} TIMEOUT 300
+                RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+string(REGEX MATCH "holder ([0-9]+)" holder "${out}")
+set(holder "${CMAKE_MATCH_1}")
+if(NOT holder OR NOT out MATCHES "holder ${holder} resume 1.*after the kill 0" OR
+   NOT err MATCHES "results folder 'busy' is in use by process ${holder} ")
+  fail("a busy study folder: expected --resume refused naming process '${holder}', then a resume after the kill; "
+       "got:\n${out}${err}")
+else()
+  message(STATUS "a busy study folder: --resume refused, naming process ${holder}; resumed after its SIGKILL")
+  expect_reference(busy "after a refused --resume, a kill and --resume")
+endif()
+
 # Under MPI: two ranks, the same file; the hand-out's cost in summary.json.
 if(MPIEXEC)
   set(ENV{OMPI_ALLOW_RUN_AS_ROOT} 1)

@@ -5,14 +5,17 @@
 // No test reads ../shared: the motions are the built-in synthetic ones.
 #include <catch2/catch.hpp>
 
+#include <furniture_fem/scene/reader.hpp>
 #include <furniture_fem/scene/scene_runner.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 using namespace furniture_fem;
@@ -205,7 +208,7 @@ TEST_CASE("a resume that cannot give the uninterrupted run is refused, naming wh
   SECTION("a damaged checkpoint") {
     const std::string bytes = slurp(dir + "/checkpoint.bin");
     std::ofstream(dir + "/checkpoint.bin", std::ios::binary | std::ios::trunc) << bytes.substr(0, bytes.size() - 100);
-    REQUIRE_THROWS_WITH(run_scene(spec, again, {&none}), Catch::Contains("checkpoint.bin") && Catch::Contains("truncated"));
+    REQUIRE_THROWS_WITH(run_scene(spec, again, {&none}), Catch::Contains("checkpoint.bin") && Catch::Contains("damaged"));
   }
   SECTION("a results file shortened since") {
     fs::resize_file(dir + "/energy.csv", 10);
@@ -223,4 +226,129 @@ TEST_CASE("a resume that cannot give the uninterrupted run is refused, naming wh
     none_there.resume = true;
     REQUIRE_THROWS_WITH(run_scene(spec, none_there, {&none}), Catch::Contains("no checkpoint"));
   }
+}
+
+namespace {
+
+void write_file(const std::string& path, const std::string& bytes) {
+  std::ofstream f(path, std::ios::binary | std::ios::trunc);
+  f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  REQUIRE(f.good());
+}
+
+// Every byte of a file up to 8 KB; of a longer one, its first and last 4 KB and about 2000 bytes between.
+std::vector<std::size_t> positions_to_damage(std::size_t size) {
+  const std::size_t edge = 4096, head = std::min(size, edge), tail = std::max(head, size - std::min(size, edge));
+  std::vector<std::size_t> at;
+  for (std::size_t i = 0; i < head; ++i) at.push_back(i);
+  for (std::size_t i = head; i < tail; i += std::max<std::size_t>(1, (tail - head) / 2000)) at.push_back(i);
+  for (std::size_t i = tail; i < size; ++i) at.push_back(i);
+  return at;
+}
+
+// One side table, 20 steps: a checkpoint far smaller than the room's 17 MB.
+SceneSpec small_scene() {
+  return parse_scene_json(nlohmann::json::parse(R"({
+    "name": "checkpoint check",
+    "items": [{"kind": "side_table", "x": 0.0, "y": 0.0, "yaw_deg": 0}],
+    "ground_motion": {"source": "synthetic", "seed": 3, "pga": 6.0, "dimensions": "3d"},
+    "duration": 0.02,
+    "dt": 0.001,
+    "outputs": {"figures": false, "vtu_every": 10}
+  })"),
+                          "small.json");
+}
+
+}  // namespace
+
+TEST_CASE("a checkpoint with any byte damaged or cut short is refused; the untouched one resumes",
+          "[runner][resume][input][checkpoint]") {
+  const SceneSpec spec = small_scene();
+  std::atomic<bool> never{false}, stop{false};
+  const std::string dir = fresh_dir("damaged");
+  StopAfter stopper(stop, 5);
+  REQUIRE(run_scene(spec, options(dir, stop), {&stopper}).status == "stopped");
+  const std::string path = dir + "/checkpoint.bin", good = slurp(path);
+  INFO("checkpoint of " << good.size() << " bytes");
+  REQUIRE(good.size() > 64);
+  CHECK(detail::checked_checkpoint_state(good, path).size() == good.size() - checkpoint_checksum_bytes);
+
+  // The sum is checked before anything is read: every damaged copy is refused by it alone.
+  long missed = 0, tried = 0;  // missed: accepted, or refused without naming the file
+  std::size_t first_missed = good.size();
+  for (const std::size_t i : positions_to_damage(good.size()))
+    for (const unsigned flip : {0xffu, 0x01u, 0x80u}) {
+      std::string bad = good;
+      bad[i] = static_cast<char>(static_cast<unsigned char>(bad[i]) ^ flip);
+      ++tried;
+      bool named = false;
+      try {
+        detail::checked_checkpoint_state(bad, path);
+      } catch (const InputError& e) {
+        named = std::string(e.what()).find("checkpoint.bin") != std::string::npos;
+      }
+      if (!named && missed++ == 0) first_missed = i;
+    }
+  INFO(tried << " damaged copies tried; the first missed: byte " << first_missed);
+  CHECK(tried >= 3 * std::min<long>(static_cast<long>(good.size()), 2 * 4096 + 2000));
+  CHECK(missed == 0);
+
+  // Through a resume: the magic line, the fingerprint, the state, the last state byte, the sum.
+  StopAfter none(never, -1);
+  RunOptions again = options(dir, never);
+  again.resume = true;
+  for (const std::size_t i : {std::size_t(0), std::size_t(9), std::size_t(40), good.size() / 2, good.size() - 5,
+                              good.size() - 4, good.size() - 1}) {
+    INFO("byte " << i << " flipped");
+    std::string bad = good;
+    bad[i] = static_cast<char>(bad[i] ^ 0x10);
+    write_file(path, bad);
+    REQUIRE_THROWS_AS(run_scene(spec, again, {&none}), InputError);
+    REQUIRE_THROWS_WITH(run_scene(spec, again, {&none}), Catch::Contains("checkpoint.bin") && Catch::Contains("damaged"));
+  }
+  for (const std::size_t n : {std::size_t(0), std::size_t(1), std::size_t(11), good.size() / 2, good.size() - 4,
+                              good.size() - 1}) {
+    INFO("cut to " << n << " bytes");
+    CHECK_THROWS_AS(detail::checked_checkpoint_state(std::string_view(good).substr(0, n), path), InputError);
+    write_file(path, good.substr(0, n));
+    REQUIRE_THROWS_WITH(run_scene(spec, again, {&none}), Catch::Contains("checkpoint.bin") && Catch::Contains("damaged"));
+  }
+  // A damaged checkpoint is refused before the run touches its files: the good one still resumes.
+  write_file(path, good);
+  REQUIRE(run_scene(spec, again, {&none}).status == "completed");
+}
+
+TEST_CASE("a checkpoint of another format is refused as such, not as damaged", "[runner][resume][input][checkpoint]") {
+  const SceneSpec spec = small_scene();
+  std::atomic<bool> never{false}, stop{false};
+  const std::string dir = fresh_dir("format_4");
+  StopAfter stopper(stop, 5);
+  REQUIRE(run_scene(spec, options(dir, stop), {&stopper}).status == "stopped");
+  std::string old = slurp(dir + "/checkpoint.bin");
+  old.resize(old.size() - checkpoint_checksum_bytes);  // format 4 had no sum
+  old[8 + checkpoint_magic.size() - 1] = '4';
+  write_file(dir + "/checkpoint.bin", old);
+  StopAfter none(never, -1);
+  RunOptions again = options(dir, never);
+  again.resume = true;
+  REQUIRE_THROWS_WITH(run_scene(spec, again, {&none}),
+                      Catch::Contains("checkpoint.bin") && Catch::Contains("another version") &&
+                          Catch::Contains("furniture_fem checkpoint 4"));
+}
+
+TEST_CASE("a run refuses a results folder another run holds, before it writes there", "[runner][lock]") {
+  SceneSpec spec = room(0);
+  spec.duration = 0.02;
+  std::atomic<bool> never{false};
+  const std::string dir = fresh_dir("locked");
+  const FolderLock other(dir);  // as another run would hold it
+  std::ofstream(dir + "/run.json") << R"({"program": "furniture_fem", "status": "running"})";
+  const std::string before = slurp(dir + "/run.json");
+  RunOptions opt = options(dir, never);
+  opt.overwrite = true;
+  REQUIRE_THROWS_WITH(run_scene(spec, opt), Catch::Contains("results folder '" + dir + "' is in use by process"));
+  opt.overwrite = false;
+  opt.resume = true;
+  REQUIRE_THROWS_WITH(run_scene(spec, opt), Catch::Contains("is in use by process"));
+  CHECK(slurp(dir + "/run.json") == before);
 }

@@ -9,6 +9,8 @@
 #include "../figures/png_reader.hpp"
 #include "../support/test_files.hpp"
 
+#include <unistd.h>
+
 #include <atomic>
 #include <cmath>
 #include <filesystem>
@@ -174,12 +176,17 @@ TEST_CASE("the same realisations.csv with 1 and 2 workers, and after a resume", 
   // Resuming without --resume is refused: the folder holds a study.
   CHECK_THROWS_WITH(StudyFolder(s, killed), Contains("--resume continues it"));
   killed.resume = true;
-  StudyFolder folder(s, killed);
-  CHECK(folder.resumed() == 2);
-  CHECK(folder.pending() == std::vector<long>{1, 2, 3, 5});  // nothing lost, nothing repeated
-  REQUIRE(run_local(folder, folder.pending(), 2, nullptr, false));
-  folder.finish("completed", {});
-  CHECK(ffem_test::slurp(killed.out_dir + "/realisations.csv") == reference);
+  {
+    StudyFolder folder(s, killed);
+    CHECK(folder.resumed() == 2);
+    CHECK(folder.pending() == std::vector<long>{1, 2, 3, 5});  // nothing lost, nothing repeated
+    // A second study on the folder while this one holds it is refused, naming this process (issue 51).
+    CHECK_THROWS_WITH(StudyFolder(s, killed), Contains("results folder '" + killed.out_dir + "' is in use by process " +
+                                                       std::to_string(static_cast<long>(getpid()))));
+    REQUIRE(run_local(folder, folder.pending(), 2, nullptr, false));
+    folder.finish("completed", {});
+    CHECK(ffem_test::slurp(killed.out_dir + "/realisations.csv") == reference);
+  }
   // Another study cannot be resumed in this folder.
   json other = block_study(3);
   other["seed"] = 99;

@@ -20,6 +20,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "contact_geometry.hpp"
@@ -141,10 +142,16 @@ constexpr double paper_mu(double static_mu) { return 0.8 * static_mu; }
 // a copy of the state committed at the end of the previous step each time, and keeps the copy of
 // the last evaluation when the step is accepted.
 struct ContactState {
-  static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
   Vec3 elongation = Vec3::Zero();  // m: tangential spring elongation, world frame (StickSlip)
   bool sticking = false;           // stick flag of the last evaluation
   Vec3 normal = Vec3::Zero();      // last contact normal (orients a degenerate normal); 0: none yet
+
+  // Member by member in checkpoints (core/checkpoint.hpp): `sticking` is followed by padding bytes.
+  template <class Self, class Archive>
+    requires std::is_same_v<std::remove_const_t<Self>, ContactState>
+  friend void transfer_state(Self& s, Archive& ar) {
+    ar(s.elongation, s.sticking, s.normal);
+  }
 };
 
 // The force of one contact, on A (B receives -on_a), and its linearisation for an implicit step:

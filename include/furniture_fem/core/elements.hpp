@@ -20,6 +20,7 @@
 #include <cmath>
 #include <concepts>
 #include <string_view>
+#include <type_traits>
 
 #include "model.hpp"
 
@@ -129,7 +130,6 @@ struct ShiftedIntegrationTimoshenko {
       Placement::needs_pairs ? std::string_view("ASI-Gauss Timoshenko") : std::string_view("one-point Timoshenko (s = 0)");
 
   struct State {
-    static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
     double s = 0;              // integration point
     int hinge = 0;             // 0 elastic, -1 / +1 plastic hinge at that end
     Vec6 eps_p = Vec6::Zero(); // plastic generalised strains (N, Mx, My, Mz), plus the initial
@@ -138,6 +138,13 @@ struct ShiftedIntegrationTimoshenko {
     double plastic_work = 0;
     bool moved = false;        // the point moved (ASI rule) from s_from; rebased at the next response
     double s_from = 0;
+
+    // Member by member in checkpoints (core/checkpoint.hpp): `hinge` and `moved` are followed by padding.
+    template <class Self, class Archive>
+      requires std::is_same_v<std::remove_const_t<Self>, State>
+    friend void transfer_state(Self& st, Archive& ar) {
+      ar(st.s, st.hinge, st.eps_p, st.plastic_increment, st.plastic_work, st.moved, st.s_from);
+    }
   };
 
   static State initial_state(const ElementProps& p) {
@@ -290,9 +297,15 @@ struct CubicEulerBernoulli {
   static constexpr bool needs_pairs = false;
   static constexpr std::string_view name = "cubic Euler-Bernoulli";
   struct State {
-    static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
     double s = 0;
     int hinge = 0;
+
+    // Member by member in checkpoints (core/checkpoint.hpp): `hinge` is followed by padding bytes.
+    template <class Self, class Archive>
+      requires std::is_same_v<std::remove_const_t<Self>, State>
+    friend void transfer_state(Self& st, Archive& ar) {
+      ar(st.s, st.hinge);
+    }
   };
   static State initial_state(const ElementProps&) { return {}; }
 

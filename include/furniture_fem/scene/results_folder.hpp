@@ -7,7 +7,8 @@
 //   check_results_folder(dir, overwrite)     refuses a non-empty folder this program did not write
 //                                            (with overwrite: one holding a file named as an output);
 //                                            changes nothing on disk
-//   prepare_results_folder(dir, overwrite)   checks, creates the folder, removes the old results
+//   prepare_results_folder(dir, overwrite)   checks, creates the folder, removes the old results (its
+//                                            caller holds the folder's lock, io/folder_lock.hpp)
 //   iso8601_utc(time)                        "2026-11-26T00:33:42.123Z"
 //   write_json_atomically(path, json)        "<path>.tmp", then renamed
 //
@@ -20,6 +21,11 @@
 // both refusals: a "running" folder's results are removed in the same way; into a folder no run wrote
 // the run writes beside the user's files, and refuses if one of them has an output's name (it would be
 // replaced or removed).
+//
+// One writer per folder: a run holds the folder's lock (FolderLock, io/folder_lock.hpp) from before it
+// removes or writes anything there until its last file is written; another run or study on the same
+// folder is refused, naming the holder's process. The lock file is none of a run's results: it does not
+// make a folder non-empty or foreign, and is never removed.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -33,6 +39,7 @@
 #include <vector>
 
 #include "../core/errors.hpp"
+#include "../io/folder_lock.hpp"
 #include "../io/vtk.hpp"
 
 namespace furniture_fem {
@@ -131,7 +138,7 @@ inline void check_results_folder(const std::string& dir, bool overwrite) {
   const fs::path p(dir);
   if (!fs::exists(p, ec)) return;  // new: created by the run
   if (!fs::is_directory(p, ec)) refuse("exists and is not a folder");
-  if (fs::is_empty(p, ec)) return;
+  if (detail::empty_but_lock(p)) return;
   const nlohmann::json record = detail::read_run_record(p);
   if (record.is_object()) {
     if (!overwrite && record.value("status", "") == "running")

@@ -2,15 +2,22 @@
 // furniture_fem/scene/run_checkpoint.hpp: a run's checkpoint file (RunOptions::checkpoint_every and
 // resume; docs/io/output.md, "Checkpoints").
 //
-//   checkpoint.bin in the results folder, written atomically (".tmp" and rename):
+//   checkpoint.bin in the results folder, written beside the previous one (".tmp") and renamed over it
+//   when whole, so a write cut short never replaces a good checkpoint:
 //     a magic line, the fingerprint (the scene and the run options that shape the results, as JSON),
 //     the runner's own state, the simulation's (Simulation::save_state), then each observer's (its
-//     files flushed first, and where they end).
+//     files flushed first, and where they end); last, 4 bytes: zlib's CRC-32 of every byte before
+//     them, least significant byte first.
 //
-// A resumed run reads it back into a run built from the same scene and options; anything that does not
-// fit (another scene or option, a truncated file, another version) is an InputError naming the file
-// and, for a changed setting, the key that differs.
+// A resumed run checks the CRC-32 before it reads anything else (one flipped bit was resumed from:
+// issue 51), then reads the state back into a run built from the same scene and options; anything that
+// does not fit (a damaged or truncated file, another scene or option, another version) is an InputError
+// naming the file and, for a changed setting, the key that differs.
+#include <zlib.h>
+
 #include <algorithm>
+#include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -27,8 +34,10 @@ namespace furniture_fem {
 
 inline constexpr const char* checkpoint_file = "checkpoint.bin";
 // 2: the Figures observer keeps the energy series; 3: a settled start's figures and each item's start;
-// 4: whether the settling finished, and its fastest item.
-inline constexpr std::string_view checkpoint_magic = "furniture_fem checkpoint 4";
+// 4: whether the settling finished, and its fastest item; 5: the CRC-32 at the end, and the structs that
+// have padding stored member by member (no padding byte is written).
+inline constexpr std::string_view checkpoint_magic = "furniture_fem checkpoint 5";
+inline constexpr std::size_t checkpoint_checksum_bytes = 4;  // the CRC-32 after the state
 
 // What a resumed run must share with the run that wrote the checkpoint: the scene and every run
 // option that changes a result or a file (not the threads, the progress bar or the checkpoint period).
@@ -59,6 +68,39 @@ struct RunnerState {
 
 namespace detail {
 
+// zlib's CRC-32 of the bytes (crc32_z: any length).
+inline std::uint32_t checkpoint_crc32(std::string_view bytes) {
+  return static_cast<std::uint32_t>(
+      crc32_z(crc32_z(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(bytes.data()), bytes.size()));
+}
+
+// The state in a checkpoint's bytes, once its CRC-32 matches; an InputError naming the file otherwise.
+// A file of another format would fail the sum too: its magic line says so first.
+inline std::string_view checked_checkpoint_state(std::string_view bytes, const std::string& path) {
+  const auto damaged = [&](const std::string& why) {
+    throw InputError(path, 0, "checkpoint", "damaged (" + why + "): it cannot be resumed from; run again without --resume");
+  };
+  if (bytes.size() < sizeof(std::uint64_t) + checkpoint_checksum_bytes)
+    damaged(std::to_string(bytes.size()) + " bytes: too short for a checkpoint");
+  const std::string_view state = bytes.substr(0, bytes.size() - checkpoint_checksum_bytes);
+  std::uint32_t stored = 0;
+  for (std::size_t k = 0; k < checkpoint_checksum_bytes; ++k)
+    stored |= std::uint32_t(static_cast<unsigned char>(bytes[state.size() + k])) << (8 * k);
+  const std::uint32_t computed = checkpoint_crc32(state);
+  if (stored == computed) return state;
+  constexpr std::string_view family = "furniture_fem checkpoint ";
+  const std::string_view magic = bytes.substr(sizeof(std::uint64_t), checkpoint_magic.size());
+  if (magic.substr(0, family.size()) == family && magic != checkpoint_magic)
+    throw InputError(path, 0, "checkpoint",
+                     "written by another version of furniture_fem (\"" + std::string(magic) + "\", this one reads \"" +
+                         std::string(checkpoint_magic) + "\"); run again without --resume");
+  char sums[64];
+  std::snprintf(sums, sizeof sums, "checksum: CRC-32 %08x stored, %08x computed", static_cast<unsigned>(stored),
+                static_cast<unsigned>(computed));
+  damaged(sums);
+  return {};
+}
+
 inline std::string checkpoint_path(const std::string& out_dir) { return out_dir + "/" + checkpoint_file; }
 
 // The first setting in which two fingerprints differ, as "key: checkpoint <a>, this run <b>".
@@ -87,6 +129,8 @@ inline void write_checkpoint(const std::string& out_dir, const nlohmann::json& f
   sim.save_state(w);
   w(observers.size());
   for (RunObserver* o : observers) o->save(w);
+  const std::uint32_t crc = detail::checkpoint_crc32(w.bytes());
+  for (std::size_t k = 0; k < checkpoint_checksum_bytes; ++k) w(static_cast<std::uint8_t>(crc >> (8 * k)));
   detail::vtk::write_atomically(detail::checkpoint_path(out_dir), w.bytes(), "checkpoint");
 }
 
@@ -115,7 +159,7 @@ inline RunnerState resume_from_checkpoint(const std::string& out_dir, const nloh
   std::ifstream f(path, std::ios::binary);
   if (!f) throw InputError(path, 0, "--resume", "cannot open the checkpoint");
   const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  StateReader r(bytes, path);
+  StateReader r(detail::checked_checkpoint_state(bytes, path), path);
   std::string magic, saved;
   r(magic);
   if (magic != checkpoint_magic)

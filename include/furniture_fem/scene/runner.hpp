@@ -297,12 +297,14 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
                                   const std::vector<RunObserver*>& extra, const RunStart& t_start,
                                   RunRecord* record = nullptr);
 
-// Clears the results folder, writes run.json (status "running"), runs, and writes run.json again as
+// Locks and clears the results folder, writes run.json (status "running"), runs, and writes run.json again as
 // the last file: its final status, or "failed" and the error when an exception leaves the run.
 inline RunSummary run_observed(const SceneSpec& spec, const RunOptions& opt, const ComposedScene& scene,
                                const std::vector<RunObserver*>& extra, const RunStart& t_start) {
   const std::string out_dir = results_folder_of(spec, opt);
   if (out_dir.empty()) return run_observed_in(spec, opt, scene, extra, t_start);
+  // Held until run.json's last write: before the old results are removed or the checkpoint is read.
+  const FolderLock lock(out_dir);
   if (!opt.resume) prepare_results_folder(out_dir, opt.overwrite);
   RunRecord record(spec, opt, out_dir, t_start);
   RunSummary sum;
@@ -568,8 +570,10 @@ FFEM_SCENE_ENTRY_INLINE RunSummary run_scene(const SceneSpec& spec, const RunOpt
   // The ground motion, read and checked before the model is built (the simulation reads it again: a
   // record is small): a record's unit, window, filter and scale, and the run's length against it.
   check_motion_covers_run(spec, opt, scene_table_motion(spec));
-  // A results folder that must not be written into fails before the model is built, too.
+  // A results folder that must not be written into fails before the model is built, too (the run takes
+  // its lock once built: detail::run_observed).
   if (const std::string out = results_folder_of(spec, opt); !out.empty()) {
+    refuse_if_locked(out);
     if (opt.resume) check_resumable_folder(out);
     else check_results_folder(out, opt.overwrite);
   }

@@ -1,7 +1,9 @@
 #pragma once
 // furniture_fem/study/runner.hpp: running a study's realisations and keeping their results.
 //
-//   StudyFolder folder(study, options)       the results folder: checked, resumed or cleared; study.json
+//   StudyFolder folder(study, options)       the results folder: locked for the folder's life (one study
+//                                             or run per folder, io/folder_lock.hpp), checked, resumed or
+//                                             cleared; study.json
 //   folder.pending()                          the runs not yet done (every run, or those a killed study left)
 //   folder.record(result)                     one result, written atomically as runs/<run>.json
 //   run_local(folder, pending, workers, stop) one thread per worker, runs handed out one at a time
@@ -29,6 +31,7 @@
 #include <thread>
 #include <vector>
 
+#include "../io/folder_lock.hpp"
 #include "figures.hpp"
 #include "outcomes.hpp"
 #include "report.hpp"
@@ -115,9 +118,12 @@ class StudyFolder {
     const nlohmann::json as_run = to_json(study);
     const std::filesystem::path study_file = dir_ / "study.json";
     const bool has_study = std::filesystem::exists(study_file);
+    // Another study or run there is named before anything else is said about the folder.
+    refuse_if_locked(dir_.string());
     if (opt.resume) {
       if (!has_study)
         throw InputError(dir_.string(), 0, "--resume", "no study to resume here (no study.json); run without --resume");
+      lock_.emplace(dir_.string());  // before the results are read: none is being written
       nlohmann::json before;
       try {
         before = read_json_file(study_file.string(), "study record");
@@ -130,7 +136,9 @@ class StudyFolder {
                              "); resume with the same study file, or use another --out");
       load_results();
     } else {
-      clear_previous(has_study);
+      check_reusable(has_study);
+      lock_.emplace(dir_.string());  // creates the folder
+      clear_previous();
       std::filesystem::create_directories(dir_ / "runs");
       detail::write_text_atomically(study_file, as_run.dump(2) + "\n");
     }
@@ -218,6 +226,7 @@ class StudyFolder {
   const StudySpec& study_;
   StudyOptions opt_;
   std::filesystem::path dir_;
+  std::optional<FolderLock> lock_;
   mutable std::mutex mutex_;
   std::map<long, RunResult> results_;
   long failed_ = 0, resumed_ = 0;
@@ -238,9 +247,9 @@ class StudyFolder {
     resumed_ = static_cast<long>(results_.size());
   }
 
-  // A folder with a previous study's results is refused unless overwrite; then only the study's own
-  // files and the runs/ folder are removed, never the user's other files.
-  void clear_previous(bool has_study) {
+  // A folder with a previous study's results is refused unless overwrite, and so is one that holds
+  // other files (the lock file is none of them). Changes nothing on disk: the folder is not yet locked.
+  void check_reusable(bool has_study) const {
     if (!std::filesystem::exists(dir_)) return;
     if (!std::filesystem::is_directory(dir_))
       throw InputError(dir_.string(), 0, "--out", "exists and is not a folder");
@@ -248,8 +257,11 @@ class StudyFolder {
     if ((has_study || has_runs) && !opt_.overwrite)
       throw InputError(dir_.string(), 0, "--out",
                        "holds a previous study's results: --resume continues it, --overwrite replaces it");
-    if (!has_study && !has_runs && !std::filesystem::is_empty(dir_) && !opt_.overwrite)
+    if (!has_study && !has_runs && !detail::empty_but_lock(dir_) && !opt_.overwrite)
       throw InputError(dir_.string(), 0, "--out", "is not empty and holds no study; choose another folder or --overwrite");
+  }
+  // Only the study's own files and the runs/ folder are removed, never the user's other files.
+  void clear_previous() {
     for (const auto& f : detail::study_result_files()) std::filesystem::remove(dir_ / f);
     std::filesystem::remove_all(dir_ / "runs");
   }

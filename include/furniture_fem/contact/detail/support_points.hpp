@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include "../../core/model.hpp"
@@ -241,9 +242,15 @@ inline SupportGeometry support_geometry(const Model& model, const std::vector<in
 // A point of a body's surface geometry: its node, and its offset from the node in the node's initial
 // frame (the offset turns with the node).
 struct SurfacePoint {
-  static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
   int node = -1;
   Vec3 arm0 = Vec3::Zero();
+
+  // Member by member in checkpoints (core/checkpoint.hpp): `node` is followed by padding bytes.
+  template <class Self, class Archive>
+    requires std::is_same_v<std::remove_const_t<Self>, SurfacePoint>
+  friend void transfer_state(Self& s, Archive& ar) {
+    ar(s.node, s.arm0);
+  }
 };
 
 // The axes of the cube around each node (surface contact): the first member's axis and the first one

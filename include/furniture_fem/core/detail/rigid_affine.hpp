@@ -17,11 +17,13 @@
 #include <Eigen/Core>
 #include <Eigen/QR>
 #include <span>
+#include <type_traits>
 
 namespace furniture_fem::detail {
 
 // f(rho) = a + B rho.
 struct AffineField {
+  static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp (no padding: 8-byte fields)
   Eigen::Vector3d a = Eigen::Vector3d::Zero();
   Eigen::Matrix3d B = Eigen::Matrix3d::Zero();
 
@@ -41,6 +43,7 @@ struct AffineField {
 
 // Weighted moments of a set of points rho_n: sum w, sum w rho, sum w rho rho^T.
 struct Moments {
+  static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp (no padding: 8-byte fields)
   double w = 0;
   Eigen::Vector3d first = Eigen::Vector3d::Zero();
   Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
@@ -67,6 +70,7 @@ struct Moments {
 // A rigid body's mass moments about its material mass centre X_c: the masses' (for sums of forces and
 // moments, the inertia) and the squared masses' (for the squared norms of the residual's inertia).
 struct RigidMassMoments {
+  static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp (no padding: 8-byte fields)
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // X_c
   Moments mass, mass_squared;
   Eigen::Vector3d rotary = Eigen::Vector3d::Zero();          // sum J_n per axis (the lumped diagonal)
@@ -120,6 +124,7 @@ AffineField fit_affine_field(std::span<const int> nodes, const RigidMassMoments&
 // A rigid body's motion over a step as fields: translational (affine in the material arm) and
 // rotational (one vector for every node), each at t_{n+1} (v, a; w, alpha) and at t_n (vn, an; wn, alphan).
 struct RigidStepFields {
+  static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp (no padding: 8-byte fields)
   AffineField v, a, vn, an;
   Eigen::Vector3d w = Eigen::Vector3d::Zero(), alpha = Eigen::Vector3d::Zero();
   Eigen::Vector3d wn = Eigen::Vector3d::Zero(), alphan = Eigen::Vector3d::Zero();
@@ -207,7 +212,6 @@ inline RigidStepWork rigid_step_work(const RigidMassMoments& mm, const AffineFie
 // x_n = c + Q rho_n, the fields of its motion, the step's increment and its uniform load per unit mass at
 // the step's start. Plain data, saved whole in checkpoints.
 struct RigidFieldState {
-  static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
   bool on = false;
   RigidMassMoments mm;
   Eigen::Vector3d c = Eigen::Vector3d::Zero();        // mass centre now
@@ -221,6 +225,12 @@ struct RigidFieldState {
   Eigen::Vector3d g1 = Eigen::Vector3d::Zero();       // and at t_{n+1}
   bool refit = false;                                 // its nodes were set from outside: fit again
   Eigen::Matrix<double, 6, 1> R = Eigen::Matrix<double, 6, 1>::Zero();  // the last reduced residual
+  // Member by member in checkpoints (core/checkpoint.hpp): its two bools are followed by padding bytes.
+  template <class Self, class Archive>
+    requires std::is_same_v<std::remove_const_t<Self>, RigidFieldState>
+  friend void transfer_state(Self& s, Archive& ar) {
+    ar(s.on, s.mm, s.c, s.Q, s.c_start, s.Q_start, s.f, s.du, s.dtheta, s.g0, s.g1, s.refit, s.R);
+  }
 };
 
 }  // namespace furniture_fem::detail
