@@ -95,6 +95,12 @@ class RoomContact {
   // re-evaluated at the end of a carried-over step). false: every contact force is a load evaluated
   // at the step's predictor, as the paper's code does (docs/contact/implicit_contact.md).
   bool implicit = true;
+  // Item-item pairs between two flexible implicit items inside the step too (the simulation solves the
+  // two items together: docs/contact/implicit_contact.md, "Flexible groups"). Off by default: exact on
+  // the closed forms, but a group's dense system has three unknowns per pair node, and two panel grids
+  // on each other (configuration 3's stacked cabinets) cost about half a second of CPU a step
+  // (measured; open, issue 52).
+  bool flexible_pairs_implicit = false;
 
   RoomContact() = default;
   RoomContact(const Model& model, std::vector<BodyContact> bodies, std::vector<RigidPlane> planes, Law law = {})
@@ -260,8 +266,9 @@ class RoomContact {
 
   // The linearisations of the floor and wall forces of the last add_forces (none unless implicit).
   const std::vector<NodalContactTangent>& nodal_tangents() const { return tangents_; }
-  // The linearisations of the item-item pairs between two rigid implicit bodies (the simulation
-  // solves such bodies together), of the last add_forces.
+  // The linearisations of the item-item pairs between two implicit bodies, both rigid or (with
+  // flexible_pairs_implicit) both flexible (the simulation solves such bodies together), of the last
+  // add_forces.
   const std::vector<PairContactTangent>& pair_tangents() const { return pair_tangents_; }
   // The floor and wall forces of the last add_forces on implicit bodies' nodes (node, force; a node
   // against two planes appears twice).

@@ -25,6 +25,7 @@
 #include <numeric>
 #include <string>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 #include "checkpoint.hpp"
@@ -159,8 +160,9 @@ inline constexpr int contact_status_code(bool sticking, bool clamped) {
 // The linearisation of an item-item contact force about the state it was evaluated at: the force F
 // acts on body_a at `point` and -F on body_b; the contact points move with their segments' nodes
 // (shares 1 - s, s on a0, a1 and 1 - t, t on b0, b1), and F(x + dx, v + dv) ~ F - K d - C d', d the
-// relative displacement of a's point from b's. When both bodies are rigid the simulation solves them
-// in one system with these terms (rigid groups); otherwise the force stays a load of the predictor.
+// relative displacement of a's point from b's. When both bodies are rigid, or both flexible, the
+// simulation solves them together with these terms (groups); otherwise the force stays a load of the
+// predictor.
 struct PairContactTangent {
   static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
   int body_a = -1, body_b = -1;
@@ -658,14 +660,16 @@ class Simulation {
   // (1 - af) (K + gamma / (beta dt) C) of its nodes (statics has none: it evaluates no contact).
   void gather_contact_tangents();
 
-  // ---- item-item pairs inside the step: rigid groups ----
-  // Rigid bodies that touch each other through pairs with tangents are solved in one system (6 per
-  // body, coupled by the pairs' terms), so a stacked item rests on another as on the floor. Groups
-  // are rebuilt at every evaluation of the contact; a group's first (lowest) body solves it for all.
-  // Pairs with a flexible body stay loads of the predictor (docs/contact/implicit_contact.md).
+  // ---- item-item pairs inside the step: groups ----
+  // Bodies that touch each other through pairs with tangents are solved together, so a stacked item
+  // rests on another as on the floor: rigid ones in one system (6 per body, coupled by the pairs'
+  // terms), flexible ones each by its own factorisation and the pairs' terms on all of them by the
+  // Woodbury identity (solve_flexible_group). Groups are rebuilt at every evaluation of the contact; a
+  // group's first (lowest) body solves it for all. A pair between a rigid and a flexible body stays a
+  // load of the predictor (docs/contact/implicit_contact.md).
   int group_of(int b) const;
 
-  void gather_rigid_groups();
+  void gather_pair_groups();
 
   // The relative position and velocity of a pair's contact points (a's minus b's) now.
   Vec3 pair_relative_position(const PairContactTangent& p) const;
@@ -680,8 +684,29 @@ class Simulation {
   // A group's step in carry-over mode: every member's residual, the joint solve, then each member
   // placed, checked and committed (none is committed when one is not finite).
   void solve_and_commit_group(const std::vector<int>& members);
-  // The joint solve of a group from its members' residuals (r_), and each member moved there.
-  void update_group(const std::vector<int>& members);
+  // The joint solve of a group from its members' residuals (r_), and each member moved there. False
+  // when a flexible member's solve failed.
+  bool update_group(std::span<const int> members, bool first_solve);
+  // A flexible group's solve: each member by its own system S (its factorisation, with its floor and
+  // wall changes), then the pairs' terms on all of them at once by the Woodbury identity over the pair
+  // nodes' translations U: with D = sum over pairs of Pi^T Kc Pi (Pi: a pair's relative displacement
+  // from its four nodes' shares), (S + U D U^T) x = r gives x = x0 - S^-1 U y, (I + D G) y = D U^T x0,
+  // G = U^T S^-1 U (each member's pair nodes' flexibility, FlexibleBody::pair_flexibility), x0 = S^-1 r.
+  // False when a solve failed.
+  bool solve_flexible_group(std::span<const int> members, bool first_solve);
+  // A flexible group's pair nodes: global ids, each one's member (index into members) and its place
+  // among that member's pair nodes (locals, per member), and the pairs' terms D on their translations.
+  struct GroupPairNodes {
+    std::vector<int> nodes, member, at;
+    std::vector<std::vector<int>> locals;
+    Eigen::MatrixXd terms;
+  };
+  GroupPairNodes group_pair_nodes(std::span<const int> members, const std::vector<int>& pairs) const;
+  // The contact's pair tangents (none for a contact policy without them).
+  const std::vector<PairContactTangent>& pair_tangents() const;
+  // f(node, w) for a pair's four nodes, w the node's share of the relative displacement (a's positive).
+  template <class F>
+  static void for_pair_sides(const PairContactTangent& p, F&& f);
 
   // The predictor's contact forces are evaluated at the velocity v_contact_ (a better guess of the
   // step's end than the predictor's); their linearisation carries them to the current state.
@@ -897,9 +922,9 @@ class Simulation {
   Eigen::VectorXd contact_delta_;
   std::vector<Vec6> predictor_shift_;  // the linearised contact forces' shift from v_contact_ to v_ at the predictor
   std::vector<Vec3> pair_predictor_shift_;    // the same for the pairs of rigid groups
-  std::vector<char> pair_active_;             // per pair tangent: inside a rigid group's solve
+  std::vector<char> pair_active_;             // per pair tangent: inside a group's solve
   std::vector<char> contact_iterated_;        // per body: this step's plane forces resolved at its end (fc1_)
-  std::vector<std::vector<int>> groups_;      // rigid groups: their bodies, ascending
+  std::vector<std::vector<int>> groups_;      // groups (all rigid or all flexible): their bodies, ascending
   std::vector<std::vector<int>> group_pairs_; // each group's pair tangents
   std::vector<int> group_of_;                 // per body: its group, or -1 (empty: no groups)
   std::vector<ElementProps> props_;

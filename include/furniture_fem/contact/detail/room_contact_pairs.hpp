@@ -49,7 +49,11 @@ inline void RoomContact<Law>::element_contacts(const ContactView& view, Eigen::V
     const auto nf = evaluate_segment_pair(law_, segment_pair(view, ea, eb), pair_params(model, ea, eb), st);
     if (pair_history_ && nf.in_contact) pair_trial_.set(key(ea, eb), st);
     if (!nf.in_contact) continue;
-    if (implicit && rigid_[A.body] && rigid_[B.body] && bodies_[A.body].implicit && bodies_[B.body].implicit) {
+    // Two rigid (or, when asked, two flexible) implicit bodies: the simulation solves them together with
+    // the pair's linearisation (a rigid and a flexible one: the pair stays explicit).
+    const bool both_rigid = rigid_[A.body] && rigid_[B.body];
+    const bool both_flexible = flexible_pairs_implicit && !rigid_[A.body] && !rigid_[B.body];
+    if (implicit && (both_rigid || both_flexible) && bodies_[A.body].implicit && bodies_[B.body].implicit) {
       const auto& c = nf.closest;
       pair_tangents_.push_back({A.body, B.body, A.n1, A.n2, B.n1, B.n2, c.s, c.t, 0.5 * (c.p_WA + c.p_WB),
                                 nf.force.K, nf.force.C, c.p_WA - c.p_WB, nf.kinematics.v});

@@ -61,6 +61,15 @@ inline Mat3 initial_frame(const Vec3& X1, const Vec3& X2, const Vec3& y_ref) {
   return E;
 }
 
+// A change of a node's contact term since its body's factorisation, put on a solve by the Woodbury
+// identity (Simulation::FlexibleBody): the change d of the node's term (in the factor's frame), on its
+// translations only (dim 3) or with its rotations (dim 6).
+struct ContactChange {
+  int local;
+  Mat6 d;
+  int dim;
+};
+
 // One body's sparse effective matrix with a fixed pattern and, per element, the positions of its
 // 144 entries in the value array: assembly writes straight into the matrix without searching or
 // allocating.
@@ -120,6 +129,11 @@ struct BodySystem {
   std::vector<int> contact_column;      // per local node; -1: not computed
   std::vector<int> contact_column_dim;  // per local node: 3 (translations) or 6 columns computed
   int contact_columns_used = 0;
+  // The last solve's Woodbury changes and the body's turn since its factorisation (the factor's frame
+  // to the current one): a group's pair terms go on that solve with the same operator
+  // (Simulation::solve_flexible_group). Scratch of the step, not saved.
+  std::vector<ContactChange> solve_changes;
+  Mat3 solve_turn = Mat3::Identity();
   int ndof() const { return static_cast<int>(nodes.size()) * 6; }
 };
 

@@ -11,11 +11,7 @@ namespace furniture_fem {
 
 template <class Element, class Integrator, class LinearSolver, class Contact>
 struct Simulation<Element, Integrator, LinearSolver, Contact>::FlexibleBody {
-  struct ContactChange {
-    int local;
-    Mat6 d;   // the change of the node's term
-    int dim;  // 3: on its translations only; 6: with its rotations
-  };
+  using ContactChange = detail::ContactChange;
 
   static void solve(Simulation& sim, int b, BodyStepSums& s) {
     auto& bs = sim.systems_[b];
@@ -121,11 +117,69 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::FlexibleBody {
       if (converged < 0) s.solve_failed = true;
       if (converged <= 0) return false;
     }
+    add_turned(sim, bs, P, bs.dx, 1.0);
+    bs.solve_changes = changes;
+    bs.solve_turn = P;
+    return true;
+  }
+
+  // Du_ += scale P x on the body's nodes: x in the factor's frame, turned by P into the current one.
+  static void add_turned(Simulation& sim, const detail::BodySystem& bs, const Mat3& P, const Eigen::VectorXd& x,
+                         double scale) {
     for (size_t k = 0; k < bs.nodes.size(); ++k) {
       const int g = bs.nodes[k];
-      sim.Du_.template segment<3>(6 * g) += P * bs.dx.template segment<3>(6 * k);
-      sim.Du_.template segment<3>(6 * g + 3) += P * bs.dx.template segment<3>(6 * k + 3);
+      sim.Du_.template segment<3>(6 * g) += scale * (P * x.template segment<3>(6 * k));
+      sim.Du_.template segment<3>(6 * g + 3) += scale * (P * x.template segment<3>(6 * k + 3));
     }
+  }
+
+  // The flexibility of the body's pair nodes (locals) through the operator of its last solve (the
+  // factorisation with that solve's Woodbury changes; the changes refined by conjugate gradients are
+  // left out): G = U^T S^-1 U in the current frame, 3 x 3 blocks node by node, from the factor's
+  // columns K^-1 U (kept until the next factorisation) at those nodes' rows only. A group's pair terms
+  // act through it (Simulation::solve_flexible_group). False when a solve fails.
+  static bool pair_flexibility(Simulation& sim, int b, const std::vector<int>& locals, Eigen::MatrixXd& G) {
+    auto& bs = sim.systems_[b];
+    for (int local : locals)
+      if (bs.contact_column_dim[local] < 3 && !add_contact_columns(sim, b, local, 3)) return false;
+    const auto n = static_cast<Eigen::Index>(locals.size());
+    const auto column = [&](Eigen::Index j) { return bs.contact_column[locals[j]]; };
+    G.resize(3 * n, 3 * n);
+    for (Eigen::Index i = 0; i < n; ++i)
+      for (Eigen::Index j = 0; j < n; ++j) G.block<3, 3>(3 * i, 3 * j) = bs.contact_columns.template block<3, 3>(6 * locals[i], column(j));
+    if (!bs.solve_changes.empty()) {  // G -= Z_PF (I + D S_FF)^-1 D Z_FP, as apply_contact_changes on each column
+      Woodbury w;
+      if (!woodbury_of(sim, b, bs.solve_changes, w)) return false;
+      Eigen::MatrixXd X(w.m, 3 * n);
+      for (std::size_t a = 0; a < bs.solve_changes.size(); ++a) {
+        const auto& ca = bs.solve_changes[a];
+        for (Eigen::Index j = 0; j < n; ++j)
+          X.block(w.at[a], 3 * j, ca.dim, 3) =
+              ca.d.topLeftCorner(ca.dim, ca.dim) * bs.contact_columns.block(6 * ca.local, column(j), ca.dim, 3);
+      }
+      const Eigen::MatrixXd Y = w.lu.solve(X);
+      if (!Y.allFinite()) return false;
+      for (std::size_t c = 0; c < bs.solve_changes.size(); ++c) {
+        const auto& cc = bs.solve_changes[c];
+        for (Eigen::Index i = 0; i < n; ++i)
+          G.middleRows(3 * i, 3) -= bs.contact_columns.block(6 * locals[i], bs.contact_column[cc.local], 3, cc.dim) *
+                                    Y.middleRows(w.at[c], cc.dim);
+      }
+    }
+    const Mat3& P = bs.solve_turn;
+    for (Eigen::Index i = 0; i < n; ++i)
+      for (Eigen::Index j = 0; j < n; ++j) G.block<3, 3>(3 * i, 3 * j) = P * G.block<3, 3>(3 * i, 3 * j) * P.transpose();
+    return true;
+  }
+  // The body's increment less S^-1 U y: y the forces on its pair nodes (locals; current frame).
+  static bool subtract_pair_response(Simulation& sim, int b, const std::vector<int>& locals, const Eigen::VectorXd& y) {
+    auto& bs = sim.systems_[b];
+    const Mat3& P = bs.solve_turn;
+    Eigen::VectorXd v = Eigen::VectorXd::Zero(bs.ndof());
+    for (std::size_t i = 0; i < locals.size(); ++i)
+      v += bs.contact_columns.middleCols(bs.contact_column[locals[i]], 3) * (P.transpose() * y.segment<3>(3 * i));
+    if (!apply_contact_changes(sim, b, bs.solve_changes, v)) return false;
+    add_turned(sim, bs, P, v, -1.0);
     return true;
   }
 
@@ -345,38 +399,51 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::FlexibleBody {
       if (!bs.contact_seen[local]) consider(local, Mat6::Zero(), 0);
     return changes;
   }
+  // The Woodbury system of a set of changes: each change's first row in it, its size m, the changes'
+  // terms D (block-diagonal) and the LU of I + D S, S the factor's columns of the changed nodes at
+  // their rows. False when a solve fails (adding a node's columns).
+  struct Woodbury {
+    std::vector<int> at;
+    int m = 0;
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+  };
+  static bool woodbury_of(Simulation& sim, int b, const std::vector<ContactChange>& changes, Woodbury& w) {
+    auto& bs = sim.systems_[b];
+    for (const auto& ch : changes)
+      if (bs.contact_column_dim[ch.local] < ch.dim && !add_contact_columns(sim, b, ch.local, ch.dim)) return false;
+    w.at.resize(changes.size());
+    w.m = 0;
+    for (std::size_t a = 0; a < changes.size(); ++a) w.at[a] = w.m, w.m += changes[a].dim;
+    Eigen::MatrixXd S(w.m, w.m), D = Eigen::MatrixXd::Zero(w.m, w.m);
+    for (std::size_t a = 0; a < changes.size(); ++a) {
+      const auto& ca = changes[a];
+      D.block(w.at[a], w.at[a], ca.dim, ca.dim) = ca.d.topLeftCorner(ca.dim, ca.dim);
+      for (std::size_t c = 0; c < changes.size(); ++c)
+        S.block(w.at[a], w.at[c], ca.dim, changes[c].dim) =
+            bs.contact_columns.block(6 * ca.local, bs.contact_column[changes[c].local], ca.dim, changes[c].dim);
+    }
+    w.lu.compute(Eigen::MatrixXd::Identity(w.m, w.m) + D * S);
+    return true;
+  }
   // Puts the changes on a solution x of the factorised matrix (bs.dx, or a refinement's vector) by the
   // Woodbury identity. False when a solve fails.
   static bool apply_contact_changes(Simulation& sim, int b, const std::vector<ContactChange>& changes, Eigen::VectorXd& x) {
     auto& bs = sim.systems_[b];
     if (changes.empty()) return true;
-    for (const auto& ch : changes)
-      if (bs.contact_column_dim[ch.local] < ch.dim && !add_contact_columns(sim, b, ch.local, ch.dim)) return false;
-    std::vector<int> at(changes.size());
-    int m = 0;
-    for (std::size_t a = 0; a < changes.size(); ++a) at[a] = m, m += changes[a].dim;
-    Eigen::MatrixXd S(m, m), D = Eigen::MatrixXd::Zero(m, m);
-    Eigen::VectorXd rhs(m);
+    Woodbury w;
+    if (!woodbury_of(sim, b, changes, w)) return false;
+    Eigen::VectorXd rhs(w.m);
     for (std::size_t a = 0; a < changes.size(); ++a) {
       const auto& ca = changes[a];
-      if (ca.dim == 3) {
-        const Mat3 d = ca.d.template topLeftCorner<3, 3>();
-        D.template block<3, 3>(at[a], at[a]) = d;
-        rhs.template segment<3>(at[a]) = d * x.template segment<3>(6 * ca.local);
-      } else {
-        D.template block<6, 6>(at[a], at[a]) = ca.d;
-        rhs.template segment<6>(at[a]) = ca.d * x.template segment<6>(6 * ca.local);
-      }
-      for (std::size_t c = 0; c < changes.size(); ++c)
-        S.block(at[a], at[c], ca.dim, changes[c].dim) =
-            bs.contact_columns.block(6 * ca.local, bs.contact_column[changes[c].local], ca.dim, changes[c].dim);
+      if (ca.dim == 3) rhs.template segment<3>(w.at[a]) = Mat3(ca.d.template topLeftCorner<3, 3>()) * x.template segment<3>(6 * ca.local);
+      else rhs.template segment<6>(w.at[a]) = ca.d * x.template segment<6>(6 * ca.local);
     }
-    const Eigen::VectorXd y = (Eigen::MatrixXd::Identity(m, m) + D * S).partialPivLu().solve(rhs);
+    const Eigen::VectorXd y = w.lu.solve(rhs);
     if (!y.allFinite()) return false;
     for (std::size_t c = 0; c < changes.size(); ++c) {
       const int col = bs.contact_column[changes[c].local];
-      if (changes[c].dim == 3) x -= bs.contact_columns.middleCols(col, 3) * y.template segment<3>(at[c]);
-      else x -= bs.contact_columns.middleCols(col, 6) * y.template segment<6>(at[c]);
+      if (changes[c].dim == 3) x -= bs.contact_columns.middleCols(col, 3) * y.template segment<3>(w.at[c]);
+      else x -= bs.contact_columns.middleCols(col, 6) * y.template segment<6>(w.at[c]);
     }
     return true;
   }

@@ -107,7 +107,7 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::RigidBody {
     apply_increment(sim, bs, sys.A.ldlt().solve(sys.R));
   }
 
-  // A group of rigid bodies joined by pairs (gather_rigid_groups): the members' 6 x 6 systems on the
+  // A group of rigid bodies joined by pairs (gather_pair_groups): the members' 6 x 6 systems on the
   // diagonal, and each pair's terms k = (1 - af) (K + gamma / (beta dt) C) through the motion of its
   // contact point on each body, T = [I, -[point - c]x]: T_a^T k T_a, T_b^T k T_b, -T_a^T k T_b, -T_b^T k T_a.
   static void group_newton_step(Simulation& sim, std::span<const int> members) {

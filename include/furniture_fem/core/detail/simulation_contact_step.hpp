@@ -74,15 +74,14 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::replace_plan
 
 template <class Element, class Integrator, class LinearSolver, class Contact>
 inline void Simulation<Element, Integrator, LinearSolver, Contact>::newton_step_from_current_state(std::span<const int> members) {
-  if (const int b = members.front(); !systems_[b].rigid) {  // flexible: never grouped
-    double num = 0, den = 0;
-    residual_body(systems_[b], fext1_, num, den);
-    update_body(b, sums_[b], false);
-    return;
-  }
   if (members.size() > 1) carry_group_pairs_to_current_state(members);
   double num = 0, den = 0;
   for (int b : members) residual_body(systems_[b], fext1_, num, den);
+  if (const int b = members.front(); !systems_[b].rigid) {
+    if (members.size() > 1) update_group(members, false);
+    else update_body(b, sums_[b], false);
+    return;
+  }
   timed(sums_[members.front()].solve, [&] {
     if (members.size() > 1) RigidBody::group_newton_step(*this, members);
     else RigidBody::newton_step(*this, systems_[members.front()]);

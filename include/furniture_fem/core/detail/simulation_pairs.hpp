@@ -36,7 +36,7 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::gather_conta
       }
     }
   }
-  gather_rigid_groups();
+  gather_pair_groups();
 }
 
 template <class Element, class Integrator, class LinearSolver, class Contact>
@@ -45,7 +45,7 @@ inline int Simulation<Element, Integrator, LinearSolver, Contact>::group_of(int 
 }
 
 template <class Element, class Integrator, class LinearSolver, class Contact>
-inline void Simulation<Element, Integrator, LinearSolver, Contact>::gather_rigid_groups() {
+inline void Simulation<Element, Integrator, LinearSolver, Contact>::gather_pair_groups() {
   groups_.clear();
   group_pairs_.clear();
   group_of_.clear();
@@ -63,7 +63,8 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::gather_rigid
     pair_active_.assign(pairs.size(), 0);
     for (size_t k = 0; k < pairs.size(); ++k) {
       const auto& p = pairs[k];
-      if (p.body_a == p.body_b || !systems_[p.body_a].rigid || !systems_[p.body_b].rigid) continue;
+      // Two rigid bodies or two flexible ones; a pair between a rigid and a flexible body stays a load.
+      if (p.body_a == p.body_b || systems_[p.body_a].rigid != systems_[p.body_b].rigid) continue;
       pair_active_[k] = 1;
       const int ra = find(p.body_a), rb = find(p.body_b);
       if (ra != rb) root[std::max(ra, rb)] = std::min(ra, rb);
@@ -131,11 +132,12 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::solve_and_co
     BodyStepSums& s = sums_[m];
     timed(s.solve, [&] { residual_body(systems_[m], fext1_, s.residual_num, s.residual_den); });
   }
-  update_group(members);
+  if (!update_group(members, true)) return;
   resolve_changed_contacts(members);
-  if (opt_.check_finite) {
-    for (int m : members) {
-      BodyStepSums& s = sums_[m];
+  for (int m : members) {
+    BodyStepSums& s = sums_[m];
+    if (s.solve_failed) return;
+    if (opt_.check_finite) {
       s.not_finite = s.not_finite || !increment_finite(m);
       if (s.not_finite) return;
     }
@@ -144,17 +146,112 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::solve_and_co
 }
 
 template <class Element, class Integrator, class LinearSolver, class Contact>
-inline void Simulation<Element, Integrator, LinearSolver, Contact>::update_group(const std::vector<int>& members) {
-  timed(sums_[members.front()].solve, [&] { RigidBody::group_newton_step(*this, members); });
+inline bool Simulation<Element, Integrator, LinearSolver, Contact>::update_group(std::span<const int> members, bool first_solve) {
+  if (!systems_[members.front()].rigid) {
+    if (!solve_flexible_group(members, first_solve)) return false;
+  } else {
+    timed(sums_[members.front()].solve, [&] { RigidBody::group_newton_step(*this, members); });
+  }
   for (int m : members) {
     auto& bs = systems_[m];
-    bs.needs_refresh = false;
-    bs.assembled = false;
+    if (bs.rigid) bs.needs_refresh = bs.assembled = false;
     timed(sums_[m].elements, [&] {
       kinematics_body(m);
       evaluate_body(m, bs.needs_refresh);
     });
   }
+  return true;
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+inline const std::vector<PairContactTangent>& Simulation<Element, Integrator, LinearSolver, Contact>::pair_tangents() const {
+  static const std::vector<PairContactTangent> none;
+  if constexpr (PairTangentPolicy<Contact>) return contact_.pair_tangents();
+  else return none;
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+template <class F>
+inline void Simulation<Element, Integrator, LinearSolver, Contact>::for_pair_sides(const PairContactTangent& p, F&& f) {
+  f(p.a0, 1 - p.s);
+  f(p.a1, p.s);
+  f(p.b0, -(1 - p.t));
+  f(p.b1, -p.t);
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+inline auto Simulation<Element, Integrator, LinearSolver, Contact>::group_pair_nodes(std::span<const int> members,
+                                                                                      const std::vector<int>& ks) const
+    -> GroupPairNodes {
+  const auto& pairs = pair_tangents();
+  GroupPairNodes g;
+  g.locals.resize(members.size());
+  std::unordered_map<int, int> slot_of;
+  for (int k : ks)
+    for_pair_sides(pairs[k], [&](int node, double) {
+      if (slot_of.count(node)) return;
+      const int i = static_cast<int>(std::find(members.begin(), members.end(), model_.node(node).body) - members.begin());
+      slot_of[node] = static_cast<int>(g.nodes.size());
+      g.nodes.push_back(node);
+      g.member.push_back(i);
+      g.at.push_back(static_cast<int>(g.locals[i].size()));
+      g.locals[i].push_back(local_index_[node]);
+    });
+  // The pairs' terms on the nodes' translations, sum over pairs of w_i w_j Kc.
+  const double kf = 1 - coef_.alpha_f, cf = coef_.gamma / (coef_.beta * opt_.dt);
+  const auto n = static_cast<Eigen::Index>(g.nodes.size());
+  g.terms = Eigen::MatrixXd::Zero(3 * n, 3 * n);
+  for (int k : ks) {
+    const auto& p = pairs[k];
+    const Mat3 Kc = kf * (p.K + cf * p.C);
+    for_pair_sides(p, [&](int ni, double wi) {
+      for_pair_sides(p, [&](int nj, double wj) { g.terms.template block<3, 3>(3 * slot_of[ni], 3 * slot_of[nj]) += wi * wj * Kc; });
+    });
+  }
+  return g;
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+inline bool Simulation<Element, Integrator, LinearSolver, Contact>::solve_flexible_group(std::span<const int> members, bool first_solve) {
+  const GroupPairNodes g = group_pair_nodes(members, group_pairs_[group_of(members.front())]);
+  const auto n = static_cast<Eigen::Index>(g.nodes.size());
+  Eigen::VectorXd x0(3 * n);  // this solve's increment at the pair nodes
+  for (Eigen::Index i = 0; i < n; ++i) x0.segment<3>(3 * i) = -Du_.segment<3>(6 * g.nodes[i]);
+  for (int m : members) {
+    timed(sums_[m].solve, [&] { solve_body(m, sums_[m]); });
+    if (sums_[m].solve_failed) return false;
+  }
+  for (Eigen::Index i = 0; i < n; ++i) x0.segment<3>(3 * i) += Du_.segment<3>(6 * g.nodes[i]);
+  bool ok = false;
+  timed(sums_[members.front()].solve, [&] {
+    // G = U^T S^-1 U, block-diagonal by member; (I + D G) y = D x0 with D the pairs' terms.
+    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(3 * n, 3 * n), Gm;
+    for (std::size_t i = 0; i < members.size(); ++i) {
+      if (!FlexibleBody::pair_flexibility(*this, members[i], g.locals[i], Gm)) return;
+      for (Eigen::Index a = 0; a < n; ++a)
+        for (Eigen::Index b = 0; b < n; ++b)
+          if (g.member[a] == static_cast<int>(i) && g.member[b] == static_cast<int>(i))
+            G.block<3, 3>(3 * a, 3 * b) = Gm.block<3, 3>(3 * g.at[a], 3 * g.at[b]);
+    }
+    Eigen::MatrixXd A = g.terms * G;
+    A.diagonal().array() += 1;
+    const Eigen::VectorXd y = A.partialPivLu().solve(g.terms * x0);
+    if (!y.allFinite()) return;
+    for (std::size_t i = 0; i < members.size(); ++i) {
+      Eigen::VectorXd yi(3 * static_cast<Eigen::Index>(g.locals[i].size()));
+      for (Eigen::Index a = 0; a < n; ++a)
+        if (g.member[a] == static_cast<int>(i)) yi.segment<3>(3 * g.at[a]) = y.segment<3>(3 * a);
+      if (!FlexibleBody::subtract_pair_response(*this, members[i], g.locals[i], yi)) return;
+    }
+    ok = true;
+  });
+  if (!ok) {
+    sums_[members.front()].solve_failed = true;
+    return false;
+  }
+  if (first_solve && opt_.finite_rotation_update)
+    for (int m : members) FlexibleBody::finite_rotation(*this, m);
+  return true;
 }
 
 template <class Element, class Integrator, class LinearSolver, class Contact>

@@ -264,10 +264,7 @@ inline int Simulation<Element, Integrator, LinearSolver, Contact>::solve_bodies(
 
 template <class Element, class Integrator, class LinearSolver, class Contact>
 inline bool Simulation<Element, Integrator, LinearSolver, Contact>::update_body(int b, BodyStepSums& s, bool first_solve) {
-  if (const int g = group_of(b); g >= 0) {
-    if (groups_[g].front() == b) update_group(groups_[g]);
-    return true;
-  }
+  if (const int g = group_of(b); g >= 0) return groups_[g].front() != b || update_group(groups_[g], first_solve);
   timed(s.solve, [&] {
     solve_body(b, s);
     if (first_solve && opt_.finite_rotation_update && !s.solve_failed && !systems_[b].rigid)
