@@ -661,12 +661,9 @@ class Simulation {
   void gather_contact_tangents();
 
   // ---- item-item pairs inside the step: groups ----
-  // Bodies that touch each other through pairs with tangents are solved together, so a stacked item
-  // rests on another as on the floor: rigid ones in one system (6 per body, coupled by the pairs'
-  // terms), flexible ones each by its own factorisation and the pairs' terms on all of them by the
-  // Woodbury identity (solve_flexible_group). Groups are rebuilt at every evaluation of the contact; a
-  // group's first (lowest) body solves it for all. A pair between a rigid and a flexible body stays a
-  // load of the predictor (docs/contact/implicit_contact.md).
+  // Bodies joined by pairs with tangents are solved together, all rigid (one system, 6 per body) or all
+  // flexible (solve_flexible_group), rebuilt at every evaluation of the contact; a group's lowest body
+  // solves it for all. A rigid and a flexible body's pair stays a load of the predictor.
   int group_of(int b) const;
 
   void gather_pair_groups();
@@ -687,23 +684,20 @@ class Simulation {
   // The joint solve of a group from its members' residuals (r_), and each member moved there. False
   // when a flexible member's solve failed.
   bool update_group(std::span<const int> members, bool first_solve);
-  // A flexible group's solve: each member by its own system S (its factorisation, with its floor and
-  // wall changes), then the pairs' terms on all of them at once by the Woodbury identity over the pair
-  // nodes' translations U: with D = sum over pairs of Pi^T Kc Pi (Pi: a pair's relative displacement
-  // from its four nodes' shares), (S + U D U^T) x = r gives x = x0 - S^-1 U y, (I + D G) y = D U^T x0,
-  // G = U^T S^-1 U (each member's pair nodes' flexibility, FlexibleBody::pair_flexibility), x0 = S^-1 r.
-  // False when a solve failed.
+  // A flexible group's solve: each member by its own system S, then the pairs' terms D on the pair
+  // nodes' translations U by the Woodbury identity: x = x0 - S^-1 U y, (I + D G) y = D U^T x0,
+  // G = U^T S^-1 U (FlexibleBody::pair_flexibility; docs/contact/implicit_contact.md). False when a
+  // solve failed.
   bool solve_flexible_group(std::span<const int> members, bool first_solve);
-  // A flexible group's pair nodes: global ids, each one's member (index into members) and its place
-  // among that member's pair nodes (locals, per member), and the pairs' terms D on their translations.
+  // A flexible group's pair nodes (global; each one's member and place among its member's locals) and
+  // the pairs' terms D on their translations.
   struct GroupPairNodes {
     std::vector<int> nodes, member, at;
     std::vector<std::vector<int>> locals;
     Eigen::MatrixXd terms;
   };
   GroupPairNodes group_pair_nodes(std::span<const int> members, const std::vector<int>& pairs) const;
-  // The contact's pair tangents (none for a contact policy without them).
-  const std::vector<PairContactTangent>& pair_tangents() const;
+  const std::vector<PairContactTangent>& pair_tangents() const;  // the contact's (none without them)
   // f(node, w) for a pair's four nodes, w the node's share of the relative displacement (a's positive).
   template <class F>
   static void for_pair_sides(const PairContactTangent& p, F&& f);
