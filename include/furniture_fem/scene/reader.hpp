@@ -305,7 +305,7 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
   if (r.has("contact")) {
     const ObjectReader c = r.object("contact");
     c.allow_only({"law", "implicit", "velocity_regularisation", "stick_length", "plane_contact_at", "rigid_pairs",
-                   "start", "floor", "wall", "item"});
+                   "flexible_pairs", "start", "floor", "wall", "item"});
     s.contact.law = c.enumeration("law", detail::law_names, s.contact.law, "contact law");
     const SceneLawInfo& law = scene_law(s.contact.law);
     if (c.has("implicit"))
@@ -322,6 +322,10 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
                                                s.contact.plane_contact_at, "plane contact place");
     s.contact.rigid_pairs = c.enumeration("rigid_pairs", detail::rigid_pair_contact_names, s.contact.rigid_pairs,
                                           "rigid pair contact");
+    s.contact.flexible_pairs = c.enumeration("flexible_pairs", detail::flexible_pair_contact_names,
+                                             s.contact.flexible_pairs, "flexible pair contact");
+    if (s.contact.flexible_pairs == FlexiblePairContact::implicit_step && implicit_contact(s.contact) != ImplicitContact::all)
+      c.fail(c.path("flexible_pairs"), "\"implicit\" needs \"implicit\": \"all\" (a flexible item's contact inside the step)");
     s.contact.start = c.enumeration("start", detail::contact_start_names, s.contact.start, "start");
     if (c.has("floor")) s.contact.floor = detail::parse_contact_overrides(c.object("floor"), s.contact.law, true);
     if (c.has("wall")) s.contact.wall = detail::parse_contact_overrides(c.object("wall"), s.contact.law, false);

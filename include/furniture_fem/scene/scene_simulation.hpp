@@ -526,6 +526,7 @@ struct SceneSimulation {
     RoomContact<Law> contact(*model, scene_body_contacts(spec, *model, items), scene_planes(spec));
     contact.set_surface(*model, spec.contact.plane_contact_at == PlaneContactAt::surfaces);
     contact.set_rigid_pair_hulls(*model, spec.contact.rigid_pairs == RigidPairContact::hulls);
+    contact.flexible_pairs_implicit = spec.contact.flexible_pairs == FlexiblePairContact::implicit_step;
     for (std::size_t i = 0; i < spec.obstacles.size(); ++i)
       contact.add_obstacle(detail::scene_obstacle(spec, i));
     switch (spec.integrator.scheme) {

@@ -163,6 +163,10 @@ enum class RigidPairContact { members, hulls };
 // at rest, then starts the run there, at t = 0, with every velocity zero (docs/scene/scene_file.md).
 enum class ContactStart { touching, settled };
 
+// Two flexible items' pairs (under `implicit` all): forces from the step's predictor, or inside the
+// step, the two items solved together (docs/contact/implicit_contact.md, "Flexible groups").
+enum class FlexiblePairContact { explicit_load, implicit_step };
+
 struct ContactSpec {
   ContactLawKind law;  // the list's first law, "paper", unless set
   // Unset: the law's default, else all; read it through implicit_contact(ContactSpec).
@@ -180,6 +184,7 @@ struct ContactSpec {
   // configuration 3 all rigid at 0.6 to 1.3 times MuJoCo's time against 3 to 4 times; docs/contact/contact.md).
   RigidPairContact rigid_pairs = RigidPairContact::hulls;
   ContactStart start = ContactStart::touching;
+  FlexiblePairContact flexible_pairs = FlexiblePairContact::explicit_load;
   ContactOverrides floor, wall, item;
 };
 

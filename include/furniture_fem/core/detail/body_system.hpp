@@ -11,6 +11,7 @@
 
 #include "../elements.hpp"
 #include "../model.hpp"
+#include "matrix_free.hpp"
 #include "rotation.hpp"
 
 namespace furniture_fem::detail {
@@ -68,6 +69,22 @@ struct ContactChange {
   int local;
   Mat6 d;
   int dim;
+};
+
+// The Woodbury system of a set of changes: each change's first row in it, its size m, and the LU of
+// I + D S (D the changes' terms, block-diagonal; S the factor's columns of the changed nodes at their
+// rows).
+struct Woodbury {
+  std::vector<int> at;
+  int m = 0;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+};
+
+// A flexible group's joint system I + D G factorised (Simulation::solve_flexible_group), kept by the
+// group's lowest member for the next steps' solves while the group's pair nodes stay the same.
+struct GroupFactor {
+  std::vector<int> nodes;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
 };
 
 // One body's sparse effective matrix with a fixed pattern and, per element, the positions of its
@@ -133,7 +150,9 @@ struct BodySystem {
   // to the current one): a group's pair terms go on that solve with the same operator
   // (Simulation::solve_flexible_group). Scratch of the step, not saved.
   std::vector<ContactChange> solve_changes;
+  Woodbury solve_woodbury;  // of solve_changes (kept for the group's products with the same operator)
   Mat3 solve_turn = Mat3::Identity();
+  GroupFactor group_factor;  // of the group this body leads (scratch, not saved)
   int ndof() const { return static_cast<int>(nodes.size()) * 6; }
 };
 

@@ -12,6 +12,7 @@ namespace furniture_fem {
 template <class Element, class Integrator, class LinearSolver, class Contact>
 struct Simulation<Element, Integrator, LinearSolver, Contact>::FlexibleBody {
   using ContactChange = detail::ContactChange;
+  using Woodbury = detail::Woodbury;
 
   static void solve(Simulation& sim, int b, BodyStepSums& s) {
     auto& bs = sim.systems_[b];
@@ -108,7 +109,8 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::FlexibleBody {
       bs.r.template segment<3>(6 * k) = P.transpose() * sim.r_.template segment<3>(6 * g);
       bs.r.template segment<3>(6 * k + 3) = P.transpose() * sim.r_.template segment<3>(6 * g + 3);
     }
-    if (!sim.solvers_[b]->solve(bs.r, bs.dx) || !apply_contact_changes(sim, b, changes, bs.dx)) {
+    if (!sim.solvers_[b]->solve(bs.r, bs.dx) || (!changes.empty() && !woodbury_of(sim, b, changes, bs.solve_woodbury)) ||
+        !apply_woodbury(bs, changes, bs.solve_woodbury, bs.dx)) {
       s.solve_failed = true;
       return false;
     }
@@ -147,24 +149,20 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::FlexibleBody {
     G.resize(3 * n, 3 * n);
     for (Eigen::Index i = 0; i < n; ++i)
       for (Eigen::Index j = 0; j < n; ++j) G.block<3, 3>(3 * i, 3 * j) = bs.contact_columns.template block<3, 3>(6 * locals[i], column(j));
-    if (!bs.solve_changes.empty()) {  // G -= Z_PF (I + D S_FF)^-1 D Z_FP, as apply_contact_changes on each column
-      Woodbury w;
-      if (!woodbury_of(sim, b, bs.solve_changes, w)) return false;
-      Eigen::MatrixXd X(w.m, 3 * n);
+    if (!bs.solve_changes.empty()) {  // G -= Z_PF (I + D S_FF)^-1 D Z_FP, as apply_woodbury on each column
+      const Woodbury& w = bs.solve_woodbury;
+      Eigen::MatrixXd X(w.m, 3 * n), Z(3 * n, w.m);
       for (std::size_t a = 0; a < bs.solve_changes.size(); ++a) {
         const auto& ca = bs.solve_changes[a];
-        for (Eigen::Index j = 0; j < n; ++j)
+        for (Eigen::Index j = 0; j < n; ++j) {
           X.block(w.at[a], 3 * j, ca.dim, 3) =
               ca.d.topLeftCorner(ca.dim, ca.dim) * bs.contact_columns.block(6 * ca.local, column(j), ca.dim, 3);
+          Z.block(3 * j, w.at[a], 3, ca.dim) = bs.contact_columns.block(6 * locals[j], bs.contact_column[ca.local], 3, ca.dim);
+        }
       }
       const Eigen::MatrixXd Y = w.lu.solve(X);
       if (!Y.allFinite()) return false;
-      for (std::size_t c = 0; c < bs.solve_changes.size(); ++c) {
-        const auto& cc = bs.solve_changes[c];
-        for (Eigen::Index i = 0; i < n; ++i)
-          G.middleRows(3 * i, 3) -= bs.contact_columns.block(6 * locals[i], bs.contact_column[cc.local], 3, cc.dim) *
-                                    Y.middleRows(w.at[c], cc.dim);
-      }
+      G.noalias() -= Z * Y;
     }
     const Mat3& P = bs.solve_turn;
     for (Eigen::Index i = 0; i < n; ++i)
@@ -178,7 +176,7 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::FlexibleBody {
     Eigen::VectorXd v = Eigen::VectorXd::Zero(bs.ndof());
     for (std::size_t i = 0; i < locals.size(); ++i)
       v += bs.contact_columns.middleCols(bs.contact_column[locals[i]], 3) * (P.transpose() * y.segment<3>(3 * i));
-    if (!apply_contact_changes(sim, b, bs.solve_changes, v)) return false;
+    if (!apply_woodbury(bs, bs.solve_changes, bs.solve_woodbury, v)) return false;
     add_turned(sim, bs, P, v, -1.0);
     return true;
   }
@@ -399,14 +397,8 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::FlexibleBody {
       if (!bs.contact_seen[local]) consider(local, Mat6::Zero(), 0);
     return changes;
   }
-  // The Woodbury system of a set of changes: each change's first row in it, its size m, the changes'
-  // terms D (block-diagonal) and the LU of I + D S, S the factor's columns of the changed nodes at
-  // their rows. False when a solve fails (adding a node's columns).
-  struct Woodbury {
-    std::vector<int> at;
-    int m = 0;
-    Eigen::PartialPivLU<Eigen::MatrixXd> lu;
-  };
+  // The Woodbury system of a set of changes (detail::Woodbury). False when a solve fails (adding a
+  // node's columns).
   static bool woodbury_of(Simulation& sim, int b, const std::vector<ContactChange>& changes, Woodbury& w) {
     auto& bs = sim.systems_[b];
     for (const auto& ch : changes)
@@ -428,10 +420,14 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::FlexibleBody {
   // Puts the changes on a solution x of the factorised matrix (bs.dx, or a refinement's vector) by the
   // Woodbury identity. False when a solve fails.
   static bool apply_contact_changes(Simulation& sim, int b, const std::vector<ContactChange>& changes, Eigen::VectorXd& x) {
-    auto& bs = sim.systems_[b];
     if (changes.empty()) return true;
     Woodbury w;
-    if (!woodbury_of(sim, b, changes, w)) return false;
+    return woodbury_of(sim, b, changes, w) && apply_woodbury(sim.systems_[b], changes, w, x);
+  }
+  // The same with the changes' Woodbury system already formed.
+  static bool apply_woodbury(const detail::BodySystem& bs, const std::vector<ContactChange>& changes, const Woodbury& w,
+                             Eigen::VectorXd& x) {
+    if (changes.empty()) return true;
     Eigen::VectorXd rhs(w.m);
     for (std::size_t a = 0; a < changes.size(); ++a) {
       const auto& ca = changes[a];

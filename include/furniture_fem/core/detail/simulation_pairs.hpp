@@ -186,29 +186,57 @@ inline auto Simulation<Element, Integrator, LinearSolver, Contact>::group_pair_n
   const auto& pairs = pair_tangents();
   GroupPairNodes g;
   g.locals.resize(members.size());
+  std::unordered_map<int, int> at_of;  // node: its place among its member's locals
+  for (int k : ks)
+    for_pair_sides(pairs[k], [&](int node, double) {
+      const int i = static_cast<int>(std::find(members.begin(), members.end(), model_.node(node).body) - members.begin());
+      if (at_of.emplace(node, static_cast<int>(g.locals[i].size())).second) g.locals[i].push_back(local_index_[node]);
+    });
+  // Slots member by member, so that a member's nodes are consecutive (G is block-diagonal by member).
+  g.first.assign(members.size() + 1, 0);
+  for (std::size_t i = 0; i < members.size(); ++i) g.first[i + 1] = g.first[i] + static_cast<int>(g.locals[i].size());
+  g.nodes.resize(g.first.back());
   std::unordered_map<int, int> slot_of;
   for (int k : ks)
     for_pair_sides(pairs[k], [&](int node, double) {
-      if (slot_of.count(node)) return;
       const int i = static_cast<int>(std::find(members.begin(), members.end(), model_.node(node).body) - members.begin());
-      slot_of[node] = static_cast<int>(g.nodes.size());
-      g.nodes.push_back(node);
-      g.member.push_back(i);
-      g.at.push_back(static_cast<int>(g.locals[i].size()));
-      g.locals[i].push_back(local_index_[node]);
+      const int slot = g.first[i] + at_of[node];
+      g.nodes[slot] = node;
+      slot_of[node] = slot;
     });
-  // The pairs' terms on the nodes' translations, sum over pairs of w_i w_j Kc.
+  // The pairs' terms on the nodes' translations, sum over pairs of w_i w_j Kc, as 3 x 3 blocks.
   const double kf = 1 - coef_.alpha_f, cf = coef_.gamma / (coef_.beta * opt_.dt);
-  const auto n = static_cast<Eigen::Index>(g.nodes.size());
-  g.terms = Eigen::MatrixXd::Zero(3 * n, 3 * n);
+  std::unordered_map<std::int64_t, int> block_of;
   for (int k : ks) {
     const auto& p = pairs[k];
     const Mat3 Kc = kf * (p.K + cf * p.C);
     for_pair_sides(p, [&](int ni, double wi) {
-      for_pair_sides(p, [&](int nj, double wj) { g.terms.template block<3, 3>(3 * slot_of[ni], 3 * slot_of[nj]) += wi * wj * Kc; });
+      for_pair_sides(p, [&](int nj, double wj) {
+        const int a = slot_of[ni], c = slot_of[nj];
+        const auto [it, fresh] = block_of.emplace(std::int64_t{a} * g.nodes.size() + c, static_cast<int>(g.terms.size()));
+        if (fresh) g.terms.push_back({a, c, Mat3::Zero()});
+        g.terms[it->second].k += wi * wj * Kc;
+      });
     });
   }
   return g;
+}
+
+// I + D G formed: D's blocks times G's rows of their column node, within that node's member (G is
+// block-diagonal by member; the dense product would cost the cube of the nodes).
+template <class Element, class Integrator, class LinearSolver, class Contact>
+inline Eigen::MatrixXd Simulation<Element, Integrator, LinearSolver, Contact>::group_matrix(const GroupPairNodes& g,
+                                                                                            const std::vector<Eigen::MatrixXd>& G) {
+  const auto n = static_cast<Eigen::Index>(g.nodes.size());
+  std::vector<int> member_of(n);
+  for (std::size_t i = 0; i + 1 < g.first.size(); ++i)
+    std::fill(member_of.begin() + g.first[i], member_of.begin() + g.first[i + 1], static_cast<int>(i));
+  Eigen::MatrixXd A = Eigen::MatrixXd::Identity(3 * n, 3 * n);
+  for (const auto& t : g.terms) {
+    const int i = member_of[t.col];
+    A.block(3 * t.row, 3 * g.first[i], 3, G[i].cols()).noalias() += t.k * G[i].middleRows(3 * (t.col - g.first[i]), 3);
+  }
+  return A;
 }
 
 template <class Element, class Integrator, class LinearSolver, class Contact>
@@ -224,25 +252,34 @@ inline bool Simulation<Element, Integrator, LinearSolver, Contact>::solve_flexib
   for (Eigen::Index i = 0; i < n; ++i) x0.segment<3>(3 * i) += Du_.segment<3>(6 * g.nodes[i]);
   bool ok = false;
   timed(sums_[members.front()].solve, [&] {
-    // G = U^T S^-1 U, block-diagonal by member; (I + D G) y = D x0 with D the pairs' terms.
-    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(3 * n, 3 * n), Gm;
-    for (std::size_t i = 0; i < members.size(); ++i) {
-      if (!FlexibleBody::pair_flexibility(*this, members[i], g.locals[i], Gm)) return;
-      for (Eigen::Index a = 0; a < n; ++a)
-        for (Eigen::Index b = 0; b < n; ++b)
-          if (g.member[a] == static_cast<int>(i) && g.member[b] == static_cast<int>(i))
-            G.block<3, 3>(3 * a, 3 * b) = Gm.block<3, 3>(3 * g.at[a], 3 * g.at[b]);
+    std::vector<Eigen::MatrixXd> G(members.size());  // block-diagonal by member
+    for (std::size_t i = 0; i < members.size(); ++i)
+      if (!FlexibleBody::pair_flexibility(*this, members[i], g.locals[i], G[i])) return;
+    const auto times_D = [&](const Eigen::VectorXd& x, Eigen::VectorXd& out) {
+      for (const auto& t : g.terms) out.segment<3>(3 * t.row) += t.k * x.segment<3>(3 * t.col);
+    };
+    const auto times_A = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {  // (I + D G) v
+      Eigen::VectorXd Gv(3 * n);
+      for (std::size_t i = 0; i < members.size(); ++i)
+        Gv.segment(3 * g.first[i], G[i].rows()).noalias() = G[i] * v.segment(3 * g.first[i], G[i].rows());
+      out = v;
+      times_D(Gv, out);
+    };
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(3 * n), y;
+    times_D(x0, rhs);
+    // The last factorised system preconditions GMRES while the pair nodes are the same (their terms and
+    // the members' flexibility change by little from step to step); else, or when GMRES does not
+    // converge, this step's system is formed and factorised.
+    detail::GroupFactor& kept = systems_[members.front()].group_factor;
+    if (kept.nodes != g.nodes || !detail::solve_near(3 * n, times_A, kept.lu, rhs, y, 20, 1e-12)) {
+      kept.lu.compute(group_matrix(g, G));
+      kept.nodes = g.nodes;
+      y = kept.lu.solve(rhs);
     }
-    Eigen::MatrixXd A = g.terms * G;
-    A.diagonal().array() += 1;
-    const Eigen::VectorXd y = A.partialPivLu().solve(g.terms * x0);
     if (!y.allFinite()) return;
-    for (std::size_t i = 0; i < members.size(); ++i) {
-      Eigen::VectorXd yi(3 * static_cast<Eigen::Index>(g.locals[i].size()));
-      for (Eigen::Index a = 0; a < n; ++a)
-        if (g.member[a] == static_cast<int>(i)) yi.segment<3>(3 * g.at[a]) = y.segment<3>(3 * a);
-      if (!FlexibleBody::subtract_pair_response(*this, members[i], g.locals[i], yi)) return;
-    }
+    for (std::size_t i = 0; i < members.size(); ++i)
+      if (!FlexibleBody::subtract_pair_response(*this, members[i], g.locals[i], y.segment(3 * g.first[i], G[i].rows())))
+        return;
     ok = true;
   });
   if (!ok) {

@@ -37,6 +37,8 @@ constexpr EnumNames<ContactLawKind, sizeof...(R)> names_of(LawList<R...>) {
 inline constexpr auto law_names = names_of(scene_contact_laws{});
 inline constexpr EnumNames<ImplicitContact, 3> implicit_contact_names{
     {{ImplicitContact::none, "none"}, {ImplicitContact::rigid, "rigid"}, {ImplicitContact::all, "all"}}};
+inline constexpr EnumNames<FlexiblePairContact, 2> flexible_pair_contact_names{
+    {{FlexiblePairContact::explicit_load, "explicit"}, {FlexiblePairContact::implicit_step, "implicit"}}};
 inline constexpr EnumNames<PlaneContactAt, 2> plane_contact_at_names{
     {{PlaneContactAt::centre_lines, "centre_lines"}, {PlaneContactAt::surfaces, "surfaces"}}};
 inline constexpr EnumNames<RigidPairContact, 2> rigid_pair_contact_names{
