@@ -28,6 +28,10 @@
 #include "scene.hpp"
 #include "../core/simulation.hpp"
 
+#define FURNITURE_FEM_SCENE_INTERNAL
+#include "detail/scene_building.hpp"
+#undef FURNITURE_FEM_SCENE_INTERNAL
+
 namespace furniture_fem {
 
 namespace detail {
@@ -193,10 +197,10 @@ inline double scale_factor(const SceneSpec& s, const Record& x, const Record* y)
 
 }  // namespace detail
 
-// The shake table's acceleration for a scene (m/s^2, table axes), as the scene asks for it. A file
+// The ground's acceleration for a scene (m/s^2, table axes): the table's without a building. A file
 // record is read, checked against the plausible peak band (check_pga), windowed and low-passed, then
 // scaled to ground_motion.scale_to (the factor in *scale_factor, 1 without a target) and by `level`.
-inline TableMotion scene_table_motion(const SceneSpec& s, double* scale_factor = nullptr) {
+inline TableMotion scene_ground_motion(const SceneSpec& s, double* scale_factor = nullptr) {
   const auto& g = s.ground_motion;
   const bool three_d = g.dimensions == MotionDimensions::three_d;
   if (scale_factor) *scale_factor = 1.0;
@@ -236,6 +240,16 @@ inline TableMotion scene_table_motion(const SceneSpec& s, double* scale_factor =
   const double factor = k * g.level;
   if (!three_d) return TableMotion::one_d(c[0].scaled(factor));
   return TableMotion::three_d(c[0].scaled(factor), c[1].scaled(factor), c[2].scaled(factor));
+}
+
+// The shake table's acceleration for a scene (m/s^2, table axes), as the scene asks for it: the ground's
+// (scene_ground_motion, scaled as it says), or with ground_motion.building that of the building's storey.
+inline TableMotion scene_table_motion(const SceneSpec& s, double* scale_factor = nullptr) {
+  TableMotion ground = scene_ground_motion(s, scale_factor);
+  if (!s.ground_motion.building) return ground;
+  if (s.ground_motion.source == MotionSource::points)
+    throw InputError(s.source, 0, "ground_motion.building", "not used with source \"points\"");
+  return detail::building_floor_motion(s, ground);
 }
 
 // The time the scene's motion ends (s of run time): the shortest component's end (a file record after
