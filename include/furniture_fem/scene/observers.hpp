@@ -740,7 +740,8 @@ class SummaryFile : public RunObserver {
     const StepTimings& timings = sim.timings();
     nlohmann::json rigid = nlohmann::json::array();
     for (int b : run.rigid_bodies) rigid.push_back(run.model.body(b).name);
-    const TableMotion& motion = run.motion;
+    const auto ground = detail::ground_under_table(run.spec);  // on a storey: the ground's peaks, and the floor's
+    const TableMotion& motion = ground ? *ground : run.motion;
     nlohmann::json summary = {
         {"furniture_fem_version", version_string},
         {"scene", to_json(run.spec)},
@@ -786,6 +787,7 @@ class SummaryFile : public RunObserver {
         {"sectional_force_peaks", detail::section_peaks_json(sum.section_peaks)},
         {"eigen_version", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
                               std::to_string(EIGEN_MINOR_VERSION)}};
+    if (ground) summary["floor_motion_peak_m_s2"] = {run.motion.peaks().x(), run.motion.peaks().y(), run.motion.peaks().z()};
     detail::write_text(run.out_dir + "/summary.json", summary.dump(2) + "\n");
   }
 };

@@ -7,11 +7,12 @@
 #endif
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../../excitation/spectrum.hpp"
 #include "../../figures/plot.hpp"
-#include "../scene_simulation.hpp"
+#include "../scene_motion.hpp"
 #include "../spec.hpp"
 
 namespace furniture_fem::detail {

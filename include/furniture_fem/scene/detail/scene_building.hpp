@@ -5,6 +5,7 @@
 #ifndef FURNITURE_FEM_SCENE_INTERNAL
 #error "furniture_fem/scene/detail/scene_building.hpp is internal: include <furniture_fem/scene/scene.hpp>"
 #endif
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
