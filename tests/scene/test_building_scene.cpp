@@ -8,6 +8,9 @@
 #include <furniture_fem/excitation/building.hpp>
 #include <furniture_fem/scene/scene_runner.hpp>
 
+#include "../support/block_scene.hpp"
+#include "../support/input_errors.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -50,13 +53,7 @@ void write_record(const std::string& path, const std::vector<double>& a, double 
   }
 }
 
-json block_scene(const json& motion, double duration = 1.0) {
-  return {{"name", "block"},
-          {"items", {{{"kind", "block"}, {"name", "crate"}, {"fidelity", "rigid"}, {"params", {{"mass_kg", 20.0}}}}}},
-          {"ground_motion", motion},
-          {"duration", duration},
-          {"outputs", {{"figures", false}}}};
-}
+using ffem_test::block_scene;
 
 const json tower = {{"storeys", 30}, {"period_s", 3.0}, {"damping_ratio", 0.02}, {"storey", 20}};
 
@@ -65,21 +62,11 @@ json with_building(const json& building) {
 }
 
 std::string error_of(const json& scene) {
-  try {
-    validate(parse_scene_json(scene, "scene.json"));
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
+  return ffem_test::input_error([&] { validate(parse_scene_json(scene, "scene.json")); });
 }
 
 std::string validate_error(const SceneSpec& s) {
-  try {
-    validate(s);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
+  return ffem_test::input_error([&] { validate(s); });
 }
 
 }  // namespace
