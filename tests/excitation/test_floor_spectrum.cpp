@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -41,7 +42,7 @@ double rk4_floor_peak(const ShearBuilding& b, const Eigen::MatrixXd& C, int floo
   const auto rhs = [&](const Eigen::VectorXd& y, double ag) {
     Eigen::VectorXd d(2 * n + 2);
     const auto u = y.head(n), v = y.segment(n, n);
-    const Eigen::VectorXd acc = (-(m_inv.asDiagonal() * (C * v + K * u))).array() - ag;
+    const Eigen::VectorXd acc = ((-(m_inv.asDiagonal() * (C * v + K * u))).array() - ag).matrix();
     d.head(n) = v;
     d.segment(n, n) = acc;
     const double a_floor = ag + acc[floor - 1];
