@@ -104,11 +104,11 @@ TEST_CASE("building: a floor response spectrum against the building and an oscil
       // spectrum, which attenuates content at the oscillator's period by about (w dt)^2 / 12 (0.15 %
       // at 0.3 s, dt 0.005 s); each peak is sampled at T / 100 (spectrum, <= 0.05 %) and at dt / 20
       // (RK4, < 0.01 %); RK4's own error at (w h)^4 with w h < 0.03 (the top mode) is negligible.
-      // 1 % is the issue's bound; the agreement found is printed.
+      // So 0.2 %, inside the issue's 1 %. Measured: the spectrum 0.005 % to 0.048 % below RK4.
       const double independent = rk4_floor_peak(b, C, floor, ground, periods[p], zeta, 20);
       INFO("T = " << periods[p] << " s, zeta " << zeta << ": spectrum " << spectrum.sa[p] << ", RK4 " << independent
                   << ", ratio - 1 = " << spectrum.sa[p] / independent - 1);
-      CHECK(spectrum.sa[p] == Approx(independent).epsilon(0.01));
+      CHECK(spectrum.sa[p] == Approx(independent).epsilon(0.002));
     }
   }
   // The floor amplifies the ground near the building's first period: the test is not of a quiet floor.
