@@ -10,6 +10,7 @@
 
 #include "../support/block_scene.hpp"
 #include "../support/input_errors.hpp"
+#include "../support/stop_after.hpp"
 
 #include <algorithm>
 #include <array>
@@ -252,19 +253,6 @@ TEST_CASE("building: input_motion.csv gives the ground beside the floor; without
 }
 
 namespace {
-// Sets the stop flag after step `at`, as Ctrl-C would between two steps.
-class StopAfterStep : public RunObserver {
- public:
-  StopAfterStep(std::atomic<bool>& flag, long at) : flag_(flag), at_(at) {}
-  void after_step(const RunView& run, const StepInfo&) override {
-    if (run.sim.steps() == at_) flag_ = true;
-  }
-
- private:
-  std::atomic<bool>& flag_;
-  long at_;
-};
-
 std::string bytes_of(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
@@ -286,11 +274,11 @@ TEST_CASE("building: a run stopped and resumed writes the uninterrupted run's in
   REQUIRE(run_scene(s, o).status == "completed");
   o.out_dir = dir + "/part";
   o.stop = &stop;
-  StopAfterStep stopper(stop, 137);
+  ffem_test::StopAfter stopper(stop, 137);
   REQUIRE(run_scene(s, o, {&stopper}).status == "stopped");
   o.stop = &never;
   o.resume = true;
-  StopAfterStep none(never, -1);  // the stopped run's observers, again
+  ffem_test::StopAfter none(never, -1);  // the stopped run's observers, again
   REQUIRE(run_scene(s, o, {&none}).status == "completed");
   const std::string whole = bytes_of(dir + "/whole/input_motion.csv");
   CHECK(whole.find("ground_dz") != std::string::npos);
