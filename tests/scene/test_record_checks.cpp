@@ -9,6 +9,8 @@
 
 #include <furniture_fem/scene/scene_runner.hpp>
 
+#include "../support/block_scene.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -69,13 +71,7 @@ std::string write_at2(const std::string& path, const std::vector<double>& a, dou
   return path;
 }
 
-json block_scene(const json& motion, double duration = 1.0) {
-  return {{"name", "block"},
-          {"items", {{{"kind", "block"}, {"name", "crate"}, {"fidelity", "rigid"}, {"params", {{"mass_kg", 20.0}}}}}},
-          {"ground_motion", motion},
-          {"duration", duration},
-          {"outputs", {{"figures", false}}}};
-}
+using ffem_test::block_scene;
 
 SceneSpec scene_in(const std::string& dir, const json& motion, double duration = 1.0) {
   SceneSpec s = parse_scene_json(block_scene(motion, duration), dir + "/scene.json");

@@ -8,6 +8,8 @@
 #include <furniture_fem/scene/reader.hpp>
 #include <furniture_fem/scene/scene_runner.hpp>
 
+#include "../support/stop_after.hpp"
+
 #include <algorithm>
 #include <atomic>
 #include <filesystem>
@@ -69,18 +71,7 @@ SceneSpec room(int variant) {
   return spec;
 }
 
-// Sets the stop flag after step `at` (-1: never), as Ctrl-C would between two steps.
-class StopAfter : public RunObserver {
- public:
-  StopAfter(std::atomic<bool>& flag, long at) : flag_(flag), at_(at) {}
-  void after_step(const RunView& run, const StepInfo&) override {
-    if (run.sim.steps() == at_) flag_ = true;
-  }
-
- private:
-  std::atomic<bool>& flag_;
-  long at_;
-};
+using ffem_test::StopAfter;
 
 RunOptions options(const std::string& out, std::atomic<bool>& stop) {
   RunOptions o;

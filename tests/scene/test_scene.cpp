@@ -25,7 +25,7 @@ std::string tmp_file(const std::string& name) {
 }
 
 // No test reads ../shared (a user's machine never has it). The JMA-Kobe files the paper's
-// configurations and the docs' example name are written here, under the same names, as short valid
+// configurations and the docs' example name (and the Hachinohe file of an example) are written here, under the same names, as short valid
 // AT2 records: validate() checks that a scene's record files exist, and the readers themselves are
 // tested in tests/excitation. Layout: <root>/shared/ground_motions/, so that a scene whose base folder
 // is <root>/repo/examples/scenes finds "../../../shared/ground_motions/..." as in the repository.
@@ -44,6 +44,8 @@ const std::filesystem::path& records_root() {
            "  .1000000E-01  .2000000E-01  .1000000E-01  .0000000E+00 -.1000000E-01\n"
            " -.2000000E-01 -.1000000E-01  .0000000E+00  .1000000E-01  .0000000E+00\n";
     }
+    // Hachinohe 1968 NS (examples/scenes/configuration3_storey20_hachinohe.json): two columns, s and gal.
+    std::ofstream(dir / "hachinohe_1968_NS_gal_dt0.01.txt") << "0.01 1.0\n0.02 -2.0\n0.03 1.5\n0.04 0.0\n";
     return r;
   }();
   return root;

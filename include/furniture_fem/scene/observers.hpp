@@ -14,7 +14,7 @@
 //   FinalStateFile         final_state.json                              files
 //   SummaryFile            summary.json                                  files
 //   Figures                marker_*.png, shear_*.png, input_motion.png,  files, figures on
-//                          energy.png, room_final.png
+//                          energy.png, room_final.png (input_spectra.png on a building's storey)
 //
 // standard_observers() picks them from the scene's outputs and the RunOptions. The file formats are
 // described in docs/io/output.md.
@@ -41,6 +41,10 @@
 #include "../io/vtk.hpp"
 #include "observer.hpp"
 #include "writer.hpp"
+
+#define FURNITURE_FEM_SCENE_INTERNAL
+#include "detail/floor_outputs.hpp"
+#undef FURNITURE_FEM_SCENE_INTERNAL
 
 namespace furniture_fem {
 
@@ -641,29 +645,51 @@ class ContactForceHistory : public RunObserver {
 
 // input_motion.csv: the table's motion as the run applies it: t, acceleration ax, ay, az (m/s^2),
 // velocity vx, vy, vz (m/s) and displacement dx, dy, dz (m), integrated from rest every step (no
-// baseline correction: a record whose acceleration does not average to zero drifts).
+// baseline correction: a record whose acceleration does not average to zero drifts). On a building's
+// storey, the ground's beside it (ground_ax ... ground_dz).
 class InputMotionHistory : public RowHistory {
  public:
   void begin(const RunView& run) override {
+    ground_ = detail::ground_under_table(run.spec);
     table_.start(run.motion, run.sim.time());
+    if (ground_) ground_table_.start(*ground_, run.sim.time());
     RowHistory::begin(run);
   }
   void after_step(const RunView& run, const StepInfo& step) override {
     table_.advance(run.motion, run.sim.time());
+    if (ground_) ground_table_.advance(*ground_, run.sim.time());
     RowHistory::after_step(run, step);
+  }
+  void resume(const RunView& run, StateReader& r) override {
+    ground_ = detail::ground_under_table(run.spec);
+    RowHistory::resume(run, r);
   }
 
  private:
-  detail::TableMotionIntegrator table_;
-  void save_rows(StateWriter& w) override { w(table_); }
-  void resume_rows(StateReader& r) override { r(table_); }
+  detail::TableMotionIntegrator table_, ground_table_;
+  std::optional<TableMotion> ground_;
+  void save_rows(StateWriter& w) override {
+    w(table_);
+    if (ground_) w(ground_table_);
+  }
+  void resume_rows(StateReader& r) override {
+    r(table_);
+    if (ground_) r(ground_table_);
+  }
   std::string file() const override { return "input_motion.csv"; }
-  std::vector<std::string> columns(const RunView&) const override {
-    return {"t", "ax", "ay", "az", "vx", "vy", "vz", "dx", "dy", "dz"};
+  std::vector<std::string> columns(const RunView& run) const override {
+    std::vector<std::string> cols{"t", "ax", "ay", "az", "vx", "vy", "vz", "dx", "dy", "dz"};
+    if (run.spec.ground_motion.building)
+      for (auto& c : detail::ground_columns()) cols.push_back(c);
+    return cols;
   }
   void write_row(const RunView& run) override {
-    const Vec3 &a = table_.acceleration(), &v = table_.velocity(), &d = table_.displacement();
-    csv().row({run.sim.time(), a.x(), a.y(), a.z(), v.x(), v.y(), v.z(), d.x(), d.y(), d.z()});
+    std::vector<double> row{run.sim.time()};
+    for (const auto* m : {&table_, &ground_table_}) {
+      if (m == &ground_table_ && !ground_) break;
+      for (const Vec3* q : {&m->acceleration(), &m->velocity(), &m->displacement()}) row.insert(row.end(), q->begin(), q->end());
+    }
+    csv().row(row);
   }
 };
 
@@ -714,7 +740,8 @@ class SummaryFile : public RunObserver {
     const StepTimings& timings = sim.timings();
     nlohmann::json rigid = nlohmann::json::array();
     for (int b : run.rigid_bodies) rigid.push_back(run.model.body(b).name);
-    const TableMotion& motion = run.motion;
+    const auto ground = detail::ground_under_table(run.spec);  // on a storey: the ground's peaks, and the floor's
+    const TableMotion& motion = ground ? *ground : run.motion;
     nlohmann::json summary = {
         {"furniture_fem_version", version_string},
         {"scene", to_json(run.spec)},
@@ -760,6 +787,7 @@ class SummaryFile : public RunObserver {
         {"sectional_force_peaks", detail::section_peaks_json(sum.section_peaks)},
         {"eigen_version", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
                               std::to_string(EIGEN_MINOR_VERSION)}};
+    if (ground) summary["floor_motion_peak_m_s2"] = {run.motion.peaks().x(), run.motion.peaks().y(), run.motion.peaks().z()};
     detail::write_text(run.out_dir + "/summary.json", summary.dump(2) + "\n");
   }
 };
@@ -856,6 +884,14 @@ class Figures : public RunObserver {
     for (int q = 0; q < 3; ++q) {
       p.ylabel(quantity[q], q);
       for (int c = 0; c < 3; ++c) p.add(t_, motion_series_[3 * q + c], axis[c], q);
+    }
+    if (const auto ground = detail::ground_under_table(run.spec)) {  // the ground under the storey
+      p.title("Input motion (table: floor " + std::to_string(run.spec.ground_motion.building->storey) + "; and ground)");
+      for (const auto& [rec, axis] : detail::horizontal(*ground)) {
+        auto [t, a] = detail::samples_until(*rec, t_.empty() ? 0.0 : t_.back());
+        p.add(std::move(t), std::move(a), "ground " + axis, 0);
+      }
+      detail::draw_floor_spectra(run.spec, *ground, run.motion, run.out_dir + "/input_spectra.png");
     }
     p.save_png(run.out_dir + "/input_motion.png", 1000, 900);
   }

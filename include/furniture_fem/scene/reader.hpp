@@ -23,6 +23,7 @@
 
 #define FURNITURE_FEM_SCENE_INTERNAL
 #include "detail/compiled_entry_points.hpp"
+#include "detail/scene_building.hpp"
 #include "detail/scene_json.hpp"
 #include "detail/scene_names.hpp"
 #undef FURNITURE_FEM_SCENE_INTERNAL
@@ -120,7 +121,7 @@ inline std::vector<std::pair<double, double>> parse_points(const ObjectReader& r
 // source "points": the table acceleration as given, scaled by level; nothing else applies to it.
 inline void parse_points_motion(const ObjectReader& r, GroundMotionSpec& g) {
   for (auto key : {"dimensions", "lowpass_hz", "window", "seed", "pga", "duration", "format", "files", "units", "dt",
-                   "scale_to", "check_pga", "pad_after_end"})
+                   "scale_to", "check_pga", "pad_after_end", "building"})
     if (r.has(key))
       r.fail(r.path(key), "not used with source \"points\" (the points are the table acceleration as given: no "
                           "filter, no window, no scaling but level, zero after the last point; the components "
@@ -139,7 +140,8 @@ inline void parse_ground_motion(const ObjectReader& r, GroundMotionSpec& g) {
   g.source = r.enumeration("source", source_names, MotionSource::synthetic, "ground motion source");
   if (g.source == MotionSource::points) return parse_points_motion(r, g);
   const bool synthetic = g.source == MotionSource::synthetic;
-  const std::vector<std::string_view> common{"source", "level", "dimensions", "lowpass_hz", "window", "pad_after_end"};
+  const std::vector<std::string_view> common{"source", "level", "dimensions", "lowpass_hz", "window", "pad_after_end",
+                                             "building"};
   const std::vector<std::string_view> only_synthetic{"seed", "pga", "duration"};
   const std::vector<std::string_view> only_file{"format", "files", "units", "dt", "scale_to", "check_pga"};
   for (auto key : synthetic ? only_file : only_synthetic)
@@ -165,6 +167,7 @@ inline void parse_ground_motion(const ObjectReader& r, GroundMotionSpec& g) {
     if (g.window_end) w.require(*g.window_end > g.window_start, "end", "must be later than window.start");
   }
   g.pad_after_end = r.boolean("pad_after_end", g.pad_after_end);
+  if (r.has("building")) g.building = parse_building(r.object("building"));
   if (synthetic) {
     // The synthetic motion is generated band-limited from t = 0 for `duration`: a low-pass corner or a
     // window were read and not applied (issue 12).

@@ -3,6 +3,7 @@
 // obstacles, the furniture items and where they stand, the ground motion, the contact law, the time
 // integration, and what to write out. Read from JSON by scene/reader.hpp (docs/scene/scene_file.md).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <filesystem>
@@ -94,6 +95,22 @@ struct ScaleTarget {
 // unit is probably wrong (a record in gal read as g peaks near 1000 g). GroundMotionSpec::check_pga.
 inline constexpr double plausible_pga_min_g = 0.0005, plausible_pga_max_g = 5.0;
 
+// ground_motion.building: the table is the floor of storey `storey` of a linear shear building
+// (excitation/building.hpp): its horizontal components are that floor's absolute acceleration under
+// the ground motion (after window, filter, scale_to and level), its vertical one the ground's. Either a
+// uniform building (storeys and period_s; its floor mass cancels out of the floor's acceleration, so
+// none is asked) or per-storey floor_mass and storey_stiffness, bottom up. docs/excitation/building.md.
+struct BuildingSpec {
+  int storeys = 0;          // uniform: N (0: per-storey arrays instead)
+  double period_s = 0;      // uniform: the first mode's period T1 (s)
+  std::vector<double> floor_mass, storey_stiffness;  // kg and N/m, floors and storeys 1..N
+  double damping_ratio = 0.02;                       // every mode's, or Rayleigh's at rayleigh_modes
+  std::array<int, 2> rayleigh_modes = {0, 0};        // 1-based; {0, 0}: modal damping
+  int storey = 0;           // the floor that is the table, 1 (above the ground storey) to N (the roof)
+  bool uniform() const { return floor_mass.empty() && storey_stiffness.empty(); }
+  int floors() const { return uniform() ? storeys : static_cast<int>(floor_mass.size()); }
+};
+
 struct GroundMotionSpec {
   MotionSource source = MotionSource::synthetic;
   // synthetic: a random motion of peak ground acceleration `pga` (m/s^2) lasting `synthetic_duration`
@@ -123,6 +140,8 @@ struct GroundMotionSpec {
   // file and synthetic: a run longer than the motion (after the window) is an error; true runs on with
   // the table at rest (zero acceleration) after the motion's end, and lets window.end pass the record's end.
   bool pad_after_end = false;
+  // file and synthetic: the table on a storey of a building (BuildingSpec); none: the table is the ground.
+  std::optional<BuildingSpec> building;
 };
 
 // A scene contact law: its place in scene_contact_laws (scene/laws/law_list.hpp), written

@@ -21,6 +21,7 @@
 #include "spec.hpp"
 
 #define FURNITURE_FEM_SCENE_INTERNAL
+#include "detail/scene_building.hpp"
 #include "detail/scene_names.hpp"
 #undef FURNITURE_FEM_SCENE_INTERNAL
 
@@ -249,6 +250,11 @@ inline void validate(const SceneSpec& s) {
         if (const auto problem = detail::points_problem(*pts, std::string("ground_motion.") + key))
           fail(problem->first, problem->second);
   }
+  if (g.building && g.source == MotionSource::points)
+    fail("ground_motion.building", "not used with source \"points\" (the points are the table acceleration as given)");
+  if (g.building)
+    if (const auto problem = detail::building_problem(*g.building))
+      fail("ground_motion.building." + problem->first, problem->second);
   if (g.window_end && *g.window_end <= g.window_start)
     fail("ground_motion.window.end", "must be later than window.start (" + detail::fmt(g.window_start) + " s)");
   for (size_t i = 0; i < s.obstacles.size(); ++i) {

@@ -12,6 +12,7 @@
 #include "spec.hpp"
 
 #define FURNITURE_FEM_SCENE_INTERNAL
+#include "detail/scene_building.hpp"
 #include "detail/scene_json.hpp"
 #include "detail/scene_names.hpp"
 #undef FURNITURE_FEM_SCENE_INTERNAL
@@ -31,6 +32,7 @@ inline nlohmann::json ground_motion_json(const GroundMotionSpec& g) {
   }
   gm["dimensions"] = enum_name(dimension_names, g.dimensions);
   gm["pad_after_end"] = g.pad_after_end;
+  if (g.building) gm["building"] = building_json(*g.building);
   if (g.source == MotionSource::synthetic) {  // no low-pass, no window: the reader refuses them
     gm["seed"] = g.seed;
     gm["pga"] = g.pga;
