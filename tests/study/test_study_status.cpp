@@ -96,7 +96,7 @@ TEST_CASE("a record window that a start-time perturbation moves past the record'
   };
   CHECK(error_in(j) ==
         dir + "/late.json: perturbations.start_time: variant 'base', motion 'pulse', level 1: a realisation's record "
-              "window may start up to 0.8 s later (scene.duration), and then the run lasts 0.5 s but the record ends "
+              "window may start up to 0.8 s later, and then scene.duration: the run lasts 0.5 s but the record ends "
               "0.2 s after the run's start (ground_motion.window from 0.8 s of record time): shorten the run to at most "
               "0.2 s, move or widen ground_motion.window, or set ground_motion.pad_after_end: true to run on with the "
               "table at rest after the motion");

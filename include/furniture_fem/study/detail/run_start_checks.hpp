@@ -98,7 +98,7 @@ inline void check_study_run_starts(const StudySpec& s, const json_io::ObjectRead
             const std::string why = refusal_text(e, spec.source);
             if (shift > 0)
               r.fail("perturbations.start_time", what + ": a realisation's record window may start up to " + fmt(shift) +
-                                                     " s later (" + study_key_of(s, v, m, l, e.field()) + "), and then " + why);
+                                                     " s later, and then " + study_key_of(s, v, m, l, e.field()) + ": " + why);
             r.fail(study_key_of(s, v, m, l, e.field()), what + ": " + why);
           }
         }
