@@ -4,21 +4,8 @@
 # exits with 3; --resume on a changed study names the keys that differ. Run by ctest as:
 #   cmake -DPROGRAM=<furniture_study> -DWORK_DIR=<scratch> -P check_study_status.cmake
 cmake_minimum_required(VERSION 3.20)
-file(REMOVE_RECURSE ${WORK_DIR})
-file(MAKE_DIRECTORY ${WORK_DIR})
-set(failures 0)
-macro(fail text)
-  message(SEND_ERROR "${text}")
-  math(EXPR failures "${failures} + 1")
-endmacro()
+include(${CMAKE_CURRENT_LIST_DIR}/common.cmake)  # WORK_DIR, failures, fail, run_program
 
-function(run_study)
-  execute_process(COMMAND ${PROGRAM} ${ARGN} WORKING_DIRECTORY ${WORK_DIR} TIMEOUT 120
-                  RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  set(code "${code}" PARENT_SCOPE)
-  set(out "${out}" PARENT_SCOPE)
-  set(err "${err}" PARENT_SCOPE)
-endfunction()
 # The exit code and a text that stderr must hold, verbatim.
 function(expect what want_code want_text)
   string(FIND "${err}" "${want_text}" at)
@@ -43,7 +30,7 @@ endfunction()
 # The duration past a motion's end: refused before any run, nothing written.
 write_study(short.json 0 "\"ground_motions\": [{\"name\": \"long\", \"ground_motion\": {\"source\": \"synthetic\", \"duration\": 3.0}},
    {\"name\": \"brief\", \"ground_motion\": {\"source\": \"synthetic\", \"duration\": 1.0}}], \"duration\": 2.0")
-run_study(short.json --out short --quiet)
+run_program(short.json --out short --quiet)
 expect("duration past a motion's end" 1
        "error: short.json: duration: variant 'base', motion 'brief', level 1: the run lasts 2 s but the synthetic motion lasts 1 s")
 if(EXISTS ${WORK_DIR}/short)
@@ -52,16 +39,16 @@ endif()
 
 # An empty suite of motions, and a motion without a name.
 write_study(empty.json 0 "\"ground_motions\": []")
-run_study(empty.json --quiet)
+run_program(empty.json --quiet)
 expect("ground_motions: []" 1 "error: empty.json: ground_motions: is empty: list at least one")
 write_study(unnamed.json 0 "\"ground_motions\": [{\"ground_motion\": {\"source\": \"synthetic\", \"duration\": 3.0}}]")
-run_study(unnamed.json --quiet)
+run_program(unnamed.json --quiet)
 expect("a motion without a name" 1 "error: unnamed.json: ground_motions[0].name: required: a name for the motion")
 
 # The block against the +x wall, turned by up to 10 deg: every realisation's scene is refused when
 # its run starts (a corner off the table), so no run completes: exit 4 and the first one's reason.
 write_study(wall.json 1.8 "\"perturbations\": {\"yaw_deg\": 10.0}, \"realisations\": 3")
-run_study(wall.json --out wall --workers 1 --quiet)
+run_program(wall.json --out wall --workers 1 --quiet)
 expect("no run completed" 4
        "error: study 'status': no run completed (3 of 3 did not); the first, run 0 (realisation 0, variant 'base'), failed: wall.json (realisation 0, variant 'base'): items[0]: item 'crate' lies partly outside the 4 m x 4 m table")
 if(NOT err MATCHES "\\[3 of the 3 runs not completed for this reason\\]" OR NOT out MATCHES "status: failed, 3 of 3 runs done")
@@ -77,7 +64,7 @@ endif()
 # Moved along x by up to 0.05 m at the table's edge: those moved outwards are refused, the others
 # complete: exit 3, the statistics from those that completed.
 write_study(edge.json 1.8 "\"perturbations\": {\"x\": 0.05}, \"realisations\": 6")
-run_study(edge.json --out edge --workers 1 --quiet)
+run_program(edge.json --out edge --workers 1 --quiet)
 expect("some runs not completed" 3 "runs did not complete (the statistics count the ")
 if(NOT err MATCHES "furniture_study: ([1-5]) of 6 runs did not complete \\(the statistics count the ([1-5]) that did\\)")
   fail("some runs not completed: expected between 1 and 5 of 6, got:\n${err}")
@@ -85,10 +72,10 @@ endif()
 
 # --resume on a changed study: the keys that differ, with old and new values.
 write_study(changing.json 0 "\"realisations\": 2")
-run_study(changing.json --out changing --workers 1 --quiet)
+run_program(changing.json --out changing --workers 1 --quiet)
 expect("the study to be changed" 0 "")
 write_study(changing.json 0.1 "\"realisations\": 3")
-run_study(changing.json --out changing --resume --quiet)
+run_program(changing.json --out changing --resume --quiet)
 expect("--resume on a changed study" 1
        "changing/study.json: --resume: this folder holds another study: its study.json differs from changing.json in realisations: 3 (was 2); scene.items[0].x: 0.1 (was 0); resume with the same study file, or use another --out")
 

@@ -77,9 +77,9 @@ inline std::string realisations_csv(const StudySpec& s, const std::vector<RunRes
   static const char* body_cols[] = {"state", "slide_m", "tilt_deg", "max_tilt_deg", "lift_m", "resting_on",
                                     "floor_force_peak_N", "wall_force_peak_N", "item_force_peak_N"};
   for (const auto& b : bodies)
-    for (const char* c : body_cols) out += "," + detail::csv_field(b + "." + c);
+    for (const char* c : body_cols) (out += ',') += detail::csv_field(b + "." + c);  // not "," + &&: GCC 12's -Wrestrict
   for (const auto& x : sections)
-    for (const char* c : section_components) out += "," + detail::csv_field(x + "." + c + "_abs_max");
+    for (const char* c : section_components) (out += ',') += detail::csv_field(x + "." + c + "_abs_max");
   out += ",diagnosis\n";
   const auto num = detail::exact_number;
   for (const auto& r : rows) {
@@ -87,7 +87,7 @@ inline std::string realisations_csv(const StudySpec& s, const std::vector<RunRes
     out += std::to_string(r.run) + "," + std::to_string(r.realisation) + "," + detail::csv_field(s.variant_name(r.variant)) +
            "," + std::to_string(p.level_index) + "," + detail::csv_field(s.motion_name(p.motion_index)) + "," +
            std::to_string(p.replicate);
-    for (const auto& [name, v] : parameter_columns(s, p)) out += "," + num(v);
+    for (const auto& [name, v] : parameter_columns(s, p)) (out += ',') += num(v);
     out += "," + r.status + "," + num(r.t_end);
     for (const auto& name : bodies) {
       const auto it = std::find_if(r.bodies.begin(), r.bodies.end(), [&](const BodyOutcome& b) { return b.name == name; });
