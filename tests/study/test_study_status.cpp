@@ -2,7 +2,7 @@
 // read, naming the study's key, the variant, the motion and the level; an empty suite of motions and
 // an unnamed motion are errors; a study in which runs did not complete says why (the first one's
 // reason and how many share it) and summary.json says "failed" when none completed; --resume on a
-// changed study names the keys that differ.
+// changed study names the keys that differ; a scene without a ground_motion runs its default motion.
 #include <catch2/catch.hpp>
 
 #include <furniture_fem/study/runner.hpp>
@@ -197,4 +197,17 @@ TEST_CASE("--resume on a changed study names the keys that differ, old and new",
   CHECK_THROWS_WITH(StudyFolder(parse_study_json(j, "third.json"), o),
                     Catch::Matchers::EndsWith("; name: \"changed\" (was \"short\"); and 2 more; resume with the same "
                                               "study file, or use another --out"));
+}
+
+TEST_CASE("a study of a scene without a ground_motion runs the scene's default motion at each level",
+          "[study][status]") {
+  // Each run failed with "cannot use value() with null" before, and the study still said "completed".
+  json j = {{"name", "default_motion"}, {"scene", block_scene(0.05)}, {"intensity", {{"levels", {0.5, 2.0}}}}};
+  j["scene"].erase("ground_motion");
+  const StudySpec s = parse_study_json(j, "default_motion.json");
+  const json scene = realisation_scene_json(s, realisation_parameters(s, 1), 0);
+  CHECK(scene["ground_motion"] == json{{"level", 2.0}});
+  const RunResult r = run_realisation(s, 1);
+  CHECK(r.status == "completed");
+  CHECK(r.t_end == Approx(0.05).margin(1e-12));
 }

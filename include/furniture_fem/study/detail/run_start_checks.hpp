@@ -18,8 +18,10 @@
 namespace furniture_fem {
 namespace detail {
 
-// How an intensity level sets a realisation's ground_motion (the study's measure).
+// How an intensity level sets a realisation's ground_motion (the study's measure). A scene without
+// one has the default motion: an object with the level alone (null made every run fail).
 inline void apply_intensity(const StudySpec& s, double level, nlohmann::json& gm) {
+  if (gm.is_null()) gm = nlohmann::json::object();
   const std::string source = gm.value("source", "synthetic");
   switch (s.intensity.measure) {
     case IntensityMeasure::scale:
@@ -73,35 +75,37 @@ inline std::string refusal_text(const InputError& e, const std::string& scene_so
 }
 
 // Checks every (variant, motion, level) scene's run start; with a start-time perturbation, also the
-// latest window a realisation can draw. Motions already checked (same ground motion, duration, dt)
-// are not read again.
+// latest window a realisation can draw. A motion already checked (the same ground motion, duration
+// and dt) is not read again, and a scene is copied only for a motion not yet checked.
 inline void check_study_run_starts(const StudySpec& s, const json_io::ObjectReader& r) {
   std::set<std::string> checked;
   RunOptions opt;  // as run_realisation runs: the scene's duration and the default output interval
-  opt.write_files = false;
   for (int v = 0; v < s.num_variants(); ++v)
-    for (int m = 0; m < s.num_motions(); ++m)
+    for (int m = 0; m < s.num_motions(); ++m) {
+      const nlohmann::json base = study_scene_json(s, v, m);
+      const nlohmann::json length = {base.value("duration", nlohmann::json()), base.value("dt", nlohmann::json())};
       for (int l = 0; l < s.num_levels(); ++l)
         for (const double shift : {0.0, s.perturb.start_time}) {
-          nlohmann::json scene = study_scene_json(s, v, m);
-          apply_intensity(s, s.intensity.levels[l], scene["ground_motion"]);
-          shift_window(scene["ground_motion"], shift);
-          const std::string key = nlohmann::json{scene["ground_motion"], scene.value("duration", nlohmann::json()),
-                                                 scene.value("dt", nlohmann::json())}.dump();
-          if (!checked.insert(key).second) continue;
+          nlohmann::json motion = base.value("ground_motion", nlohmann::json());
+          apply_intensity(s, s.intensity.levels[l], motion);
+          shift_window(motion, shift);
+          if (!checked.insert(nlohmann::json{motion, length}.dump()).second) continue;
+          nlohmann::json scene = base;
+          scene["ground_motion"] = std::move(motion);
           const std::string what = "variant '" + s.variant_name(v) + "', motion '" + s.motion_name(m) + "', level " +
                                    fmt(s.intensity.levels[l]);
           const SceneSpec spec = study_scene(s, scene, what);
           try {
             check_run_start(spec, opt);
           } catch (const InputError& e) {
-            const std::string why = refusal_text(e, spec.source);
+            const std::string key = study_key_of(s, v, m, l, e.field()), why = refusal_text(e, spec.source);
             if (shift > 0)
               r.fail("perturbations.start_time", what + ": a realisation's record window may start up to " + fmt(shift) +
-                                                     " s later, and then " + study_key_of(s, v, m, l, e.field()) + ": " + why);
-            r.fail(study_key_of(s, v, m, l, e.field()), what + ": " + why);
+                                                     " s later, and then " + key + ": " + why);
+            r.fail(key, what + ": " + why);
           }
         }
+    }
 }
 
 }  // namespace detail
