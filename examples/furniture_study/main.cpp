@@ -6,8 +6,9 @@
 //   furniture_study STUDY.json --scene-of RUN [--out FILE]     the scene of one run, for furniture_quake
 //   mpirun -n K furniture_study STUDY.json ...                  the same, spread over K ranks
 //
-// Exit codes: 0 done, 1 bad input (a study, scene or record file), 2 usage, 130 interrupted (the study
-// stops cleanly: finished runs are kept, --resume continues it).
+// Exit codes: 0 every run completed, 1 bad input (a study, scene or record file), 2 usage, 3 some runs
+// did not complete (diverged or failed: the statistics count the others), 4 no run completed, 130
+// interrupted (the study stops cleanly: finished runs are kept, --resume continues it).
 #include <furniture_fem/study/runner.hpp>
 
 #include <CLI/CLI.hpp>
@@ -32,6 +33,8 @@ enum ExitCode : int {
   exit_done = 0,
   exit_bad_input = 1,
   exit_usage = 2,
+  exit_not_all_completed = 3,  // as furniture_quake's 3 (diverged): the outputs are written
+  exit_none_completed = 4,
   exit_interrupted = ffem_examples::exit_interrupted
 };
 
@@ -57,7 +60,8 @@ void define_options(CLI::App& app, CommandLine& cl) {
   app.add_flag_callback("--quiet", [&cl] { cl.opt.progress = false; }, "no progress line");
   app.add_option("--scene-of", cl.scene_of, "write the scene of run RUN (realisations.csv's `run`) and stop")
       ->type_name("RUN")->check(CLI::NonNegativeNumber);
-  app.footer("Exit codes: 0 done, 1 bad input, 2 usage, 130 interrupted (finished runs are kept; --resume continues).");
+  app.footer("Exit codes: 0 every run completed, 1 bad input, 2 usage, 3 some runs did not complete (diverged or failed),\n"
+             "4 no run completed, 130 interrupted (finished runs are kept; --resume continues).");
 }
 
 int write_scene_of(const StudySpec& study, const CommandLine& cl) {
@@ -76,10 +80,23 @@ int write_scene_of(const StudySpec& study, const CommandLine& cl) {
   return exit_done;
 }
 
+// The last word: the summary line, and when runs did not complete, why (the first one's reason and
+// how many share it) and an exit code that says so.
 int report(const std::string& status, const StudyFolder& folder, double wall) {
   std::printf("%s: %s, %ld of %ld runs done (%ld not completed), %.1f s; results in %s\n", folder.study().name.c_str(),
               status.c_str(), folder.done(), folder.study().num_runs(), folder.failed(), wall, folder.dir().c_str());
-  return status == "completed" ? exit_done : exit_interrupted;
+  if (status == "stopped") return exit_interrupted;
+  const StudyFailures f = study_failures(folder.results());
+  if (f.not_completed == 0) return exit_done;
+  const std::string why = folder.not_completed_text(f);
+  if (f.completed == 0) {
+    std::fprintf(stderr, "error: study '%s': no run completed (%ld of %ld did not); %s\n", folder.study().name.c_str(),
+                 f.not_completed, folder.study().num_runs(), why.c_str());
+    return exit_none_completed;
+  }
+  std::fprintf(stderr, "furniture_study: %ld of %ld runs did not complete (the statistics count the %ld that did); %s\n",
+               f.not_completed, folder.study().num_runs(), f.completed, why.c_str());
+  return exit_not_all_completed;
 }
 
 int run_here(const StudySpec& study, CommandLine cl) {
@@ -91,7 +108,7 @@ int run_here(const StudySpec& study, CommandLine cl) {
   if (folder.resumed() > 0) std::fprintf(stderr, "resuming: %ld runs already done\n", folder.resumed());
   const bool all = run_local(folder, folder.pending(), timing.workers, &g_stop, cl.opt.progress);
   timing.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const std::string status = all ? "completed" : "stopped";
+  const std::string status = folder.status(all);
   folder.finish(status, timing);
   return report(status, folder, timing.wall_seconds);
 }
@@ -113,7 +130,7 @@ int run_mpi(const StudySpec& study, CommandLine cl, int rank, int ranks) {
   if (folder.resumed() > 0) std::fprintf(stderr, "resuming: %ld runs already done\n", folder.resumed());
   const bool all = mpi_study::serve(folder, folder.pending(), timing.workers, g_stop, cl.opt.progress, timing);
   timing.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const std::string status = all ? "completed" : "stopped";
+  const std::string status = folder.status(all);
   folder.finish(status, timing);
   return report(status, folder, timing.wall_seconds);
 }

@@ -4,19 +4,10 @@
 #         -DWORK_DIR=<scratch folder> -P check_command_line.cmake
 # Everything runs in WORK_DIR, so a check that wrongly starts a run writes nothing elsewhere.
 cmake_minimum_required(VERSION 3.20)
-file(REMOVE_RECURSE ${WORK_DIR})
-file(MAKE_DIRECTORY ${WORK_DIR})
-set(failures 0)
+include(${CMAKE_CURRENT_LIST_DIR}/common.cmake)  # WORK_DIR, failures, run_program
 
 # check(<expected exit code> <regex the output must match> <arguments...>): stdout and stderr are
 # matched together except that --help and --version must print on stdout (see check_stdout).
-function(run_program)
-  execute_process(COMMAND ${PROGRAM} ${ARGN} WORKING_DIRECTORY ${WORK_DIR} TIMEOUT 120
-                  RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  set(code "${code}" PARENT_SCOPE)
-  set(out "${out}" PARENT_SCOPE)
-  set(err "${err}" PARENT_SCOPE)
-endfunction()
 
 function(verdict expected_code regex text args)
   if(NOT code STREQUAL expected_code OR NOT text MATCHES "${regex}")

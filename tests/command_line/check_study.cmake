@@ -3,13 +3,7 @@
 # `mpiexec -n 2`. Run by ctest (tests/command_line/CMakeLists.txt) as:
 #   cmake -DPROGRAM=<furniture_study> -DWORK_DIR=<scratch> [-DMPIEXEC=<mpiexec>] -P check_study.cmake
 cmake_minimum_required(VERSION 3.20)
-file(REMOVE_RECURSE ${WORK_DIR})
-file(MAKE_DIRECTORY ${WORK_DIR})
-set(failures 0)
-macro(fail text)
-  message(SEND_ERROR "${text}")
-  math(EXPR failures "${failures} + 1")
-endmacro()
+include(${CMAKE_CURRENT_LIST_DIR}/common.cmake)  # WORK_DIR, failures, fail
 
 # A study of 160 short runs (a rigid block sliding under a constant table acceleration, 2 s each):
 # long enough to be killed in the middle.

@@ -1,18 +1,20 @@
 # The malformed-input corpus (docs/malformed_input.md): every case of expected.txt through the main
-# program, each with its own time limit. A case passes when the program exits with 1 (bad input: never
-# a crash, a signal, a time-out or 0) and its stderr holds every expected text; a case of the class
-# "valid" (the unbroken files the other cases break) must exit with 0. All failures are reported at the
-# end. CMake only (no python): run as
+# program (a case of the class "study": through furniture_study), each with its own time limit. A case
+# passes when the program exits with 1 (bad input: never a crash, a signal, a time-out or 0) and its
+# stderr holds every expected text; a case of the class "valid" (the unbroken files the other cases
+# break) must exit with 0. All failures are reported at the end. CMake only (no python): run as
 #
-#   cmake -DFURNITURE_QUAKE=<path of furniture_quake> -DCORPUS_DIR=<this folder> -DWORK_DIR=<scratch folder>
+#   cmake -DFURNITURE_QUAKE=<path of furniture_quake> -DFURNITURE_STUDY=<path of furniture_study>
+#         -DCORPUS_DIR=<this folder> -DWORK_DIR=<scratch folder>
 #         [-DCASE_TIMEOUT=20] [-DCASES=<regex on "class/name.json">] -P run_corpus.cmake
 #
 # expected.txt: one case a line, "<class>/<name>.json | <text> | <text> ...", where {scene} stands for
-# the case's scene file and {dir} for its folder (both absolute, as the program names them); lines
-# starting with '#' and blank lines are skipped.
+# the case's file and {dir} for its folder (both absolute, as the program names them); "exit N" as the
+# first text asks for that exit code instead of 1 (the texts after it still on stderr); lines starting
+# with '#' and blank lines are skipped.
 cmake_minimum_required(VERSION 3.20)
 
-foreach(var FURNITURE_QUAKE CORPUS_DIR WORK_DIR)
+foreach(var FURNITURE_QUAKE FURNITURE_STUDY CORPUS_DIR WORK_DIR)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "run_corpus.cmake: -D${var}=... is required")
   endif()
@@ -20,9 +22,11 @@ endforeach()
 if(NOT DEFINED CASE_TIMEOUT)
   set(CASE_TIMEOUT 20)
 endif()
-if(NOT EXISTS "${FURNITURE_QUAKE}")
-  message(FATAL_ERROR "run_corpus.cmake: no program at '${FURNITURE_QUAKE}'")
-endif()
+foreach(program "${FURNITURE_QUAKE}" "${FURNITURE_STUDY}")
+  if(NOT EXISTS "${program}")
+    message(FATAL_ERROR "run_corpus.cmake: no program at '${program}'")
+  endif()
+endforeach()
 get_filename_component(CORPUS_DIR "${CORPUS_DIR}" ABSOLUTE)
 set(cases_dir "${CORPUS_DIR}/cases")
 
@@ -90,24 +94,33 @@ while(NOT manifest STREQUAL "")
   set(out "${WORK_DIR}/${name}")
   file(REMOVE_RECURSE "${out}")
 
-  execute_process(COMMAND "${FURNITURE_QUAKE}" "${scene}" --out "${out}" --duration 0.05 --no-figures --quiet
-                  RESULT_VARIABLE rc OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr TIMEOUT ${CASE_TIMEOUT})
+  if(class STREQUAL "study")
+    execute_process(COMMAND "${FURNITURE_STUDY}" "${scene}" --out "${out}" --workers 1 --quiet
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr TIMEOUT ${CASE_TIMEOUT})
+  else()
+    execute_process(COMMAND "${FURNITURE_QUAKE}" "${scene}" --out "${out}" --duration 0.05 --no-figures --quiet
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE stdout ERROR_VARIABLE stderr TIMEOUT ${CASE_TIMEOUT})
+  endif()
 
   set(problems "")
   set(want_rc 1)
-  if(field_1 STREQUAL "exit 0")
-    set(want_rc 0)
+  set(first_text 1)
+  if(field_1 MATCHES "^exit ([0-9]+)$")
+    set(want_rc ${CMAKE_MATCH_1})
+    set(first_text 2)
   endif()
   if(NOT rc STREQUAL "${want_rc}")
     string(APPEND problems "    exit: '${rc}', expected ${want_rc}\n")
   endif()
-  if(want_rc EQUAL 1)
+  math(EXPR last "${nfields} - 1")
+  if(NOT want_rc EQUAL 0 AND first_text GREATER last)
+    string(APPEND problems "    no expected text after 'exit ${want_rc}' in expected.txt\n")
+  elseif(NOT want_rc EQUAL 0)
     string(FIND "${stderr}" "error: " at)
     if(at EQUAL -1)
       string(APPEND problems "    stderr has no 'error: ' line\n")
     endif()
-    math(EXPR last "${nfields} - 1")
-    foreach(k RANGE 1 ${last})
+    foreach(k RANGE ${first_text} ${last})
       set(want "${field_${k}}")
       string(REPLACE "{scene}" "${scene}" want "${want}")
       string(REPLACE "{dir}" "${dir}" want "${want}")

@@ -559,17 +559,23 @@ RunSummary run_law(const SceneSpec& spec, const RunOptions& opt, const std::vect
 
 // Declared only for the compiled scene runner's users (detail/compiled_entry_points.hpp).
 #ifndef FFEM_SCENE_DECLARED_ONLY
+// What run_scene refuses before it builds the model: the scene (validate), the output interval, the
+// run's length, and the ground motion, read and checked (a record's unit, window, filter and scale)
+// and set against the run's length. A study checks each of its scenes with it before its first run.
+FFEM_SCENE_ENTRY_INLINE void check_run_start(const SceneSpec& spec, const RunOptions& opt) {
+  validate(spec);
+  row_interval_steps(opt, spec.dt);
+  check_run_length(spec, opt);
+  // The simulation reads the motion again: a record is small.
+  check_motion_covers_run(spec, opt, scene_table_motion(spec));
+}
+
 // Runs a scene with the standard observers (its outputs, as RunOptions asks) and then `extra`, in
 // that order; returns its summary. RunOptions::write_files = false runs it without writing anything
 // (the summary still holds the final states and the section peaks).
 FFEM_SCENE_ENTRY_INLINE RunSummary run_scene(const SceneSpec& spec, const RunOptions& opt = {}, const std::vector<RunObserver*>& extra = {}) {
   const detail::RunStart t_start;
-  validate(spec);
-  row_interval_steps(opt, spec.dt);  // a bad interval or length fails before the model is built
-  check_run_length(spec, opt);
-  // The ground motion, read and checked before the model is built (the simulation reads it again: a
-  // record is small): a record's unit, window, filter and scale, and the run's length against it.
-  check_motion_covers_run(spec, opt, scene_table_motion(spec));
+  check_run_start(spec, opt);
   // A results folder that must not be written into fails before the model is built, too (the run takes
   // its lock once built: detail::run_observed).
   if (const std::string out = results_folder_of(spec, opt); !out.empty()) {

@@ -4,6 +4,7 @@
 //
 //   RunResult run_realisation(study, run_index, stop)    runs realisation run_index / variants, variant run_index % variants
 //   nlohmann::json to_json(const RunResult&) / RunResult run_result_from_json(json)   exact round trip
+//   StudyFailures study_failures(results)                 the runs that did not complete, the first one's reason
 //
 // A run that diverges, or whose scene is refused (an item placed into another by its perturbation),
 // is a result too: status "diverged" or "failed", with its diagnosis. Only a run stopped by the user
@@ -14,6 +15,7 @@
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <cctype>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -134,6 +136,54 @@ inline RunResult run_realisation(const StudySpec& s, long run, const std::atomic
   }
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
+}
+
+// A run's reason for not completing, its numbers aside (a realisation's index, a time, a depth): its
+// status and diagnosis with each number that stands alone, sign included, as '#' (names such as
+// items[0] or synthetic_1 keep theirs).
+inline std::string failure_reason(const RunResult& r) {
+  const std::string& d = r.diagnosis;
+  const auto digit = [&](std::size_t i) { return i < d.size() && std::isdigit(static_cast<unsigned char>(d[i])); };
+  const auto sign = [&](std::size_t i) { return i < d.size() && (d[i] == '-' || d[i] == '+'); };
+  const auto in_name = [&](std::size_t i) {
+    const unsigned char c = static_cast<unsigned char>(d[i]);
+    return std::isalnum(c) || c == '_' || c == '[' || c == '.';
+  };
+  std::string out = r.status + ": ";
+  for (std::size_t i = 0; i < d.size();) {
+    if (!digit(sign(i) ? i + 1 : i) || (i > 0 && in_name(i - 1))) {
+      out += d[i++];
+      continue;
+    }
+    i += sign(i);
+    while (digit(i) || (i < d.size() && (d[i] == '.' || d[i] == 'e' || d[i] == 'E')) ||
+           (sign(i) && (d[i - 1] == 'e' || d[i - 1] == 'E')))
+      ++i;
+    out += '#';
+  }
+  return out;
+}
+
+// The runs that did not complete: how many, the first of them (by run index) and how many share its
+// reason (failure_reason).
+struct StudyFailures {
+  long completed = 0, not_completed = 0, same_reason = 0;
+  RunResult first;  // run -1: every run completed
+  StudyFailures() { first.run = -1; }
+};
+
+inline StudyFailures study_failures(const std::vector<RunResult>& rows) {  // rows in run order
+  StudyFailures f;
+  std::string reason;
+  for (const auto& r : rows) {
+    if (r.status == "completed") {
+      ++f.completed;
+      continue;
+    }
+    if (++f.not_completed == 1) f.first = r, reason = failure_reason(r);
+    f.same_reason += failure_reason(r) == reason;
+  }
+  return f;
 }
 
 inline nlohmann::json to_json(const RunResult& r) {

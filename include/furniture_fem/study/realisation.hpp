@@ -107,35 +107,13 @@ inline void scale_param(nlohmann::json& item, const char* key, double factor, bo
   if (!params.is_object()) params = nlohmann::json::object();
   params[key] = params.value(key, 1.0) * factor;
 }
-
-inline void apply_intensity(const StudySpec& s, double level, nlohmann::json& gm) {
-  const std::string source = gm.value("source", "synthetic");
-  switch (s.intensity.measure) {
-    case IntensityMeasure::scale:
-      gm["level"] = gm.value("level", 1.0) * level;
-      return;
-    case IntensityMeasure::pga:
-      if (source == "synthetic")
-        gm["pga"] = level;
-      else
-        gm["scale_to"] = {{"pga", level}};
-      return;
-    case IntensityMeasure::pgv:
-      gm["scale_to"] = {{"pgv", level}};
-      return;
-  }
-}
 }  // namespace detail
 
 // The scene realisation `p` runs under `variant`, as JSON (furniture_quake can run it by itself).
 inline nlohmann::json realisation_scene_json(const StudySpec& s, const RealisationParameters& p, int variant) {
   nlohmann::json scene = detail::study_scene_json(s, variant, p.motion_index);
   detail::apply_intensity(s, p.level, scene["ground_motion"]);
-  if (p.start_shift > 0) {
-    nlohmann::json& window = scene["ground_motion"]["window"];
-    if (!window.is_object()) window = nlohmann::json::object();
-    window["start"] = window.value("start", 0.0) + p.start_shift;
-  }
+  detail::shift_window(scene["ground_motion"], p.start_shift);
   for (const auto& ip : p.items)
     for (auto& item : scene["items"])
       if (item.value("name", "") == ip.item) {

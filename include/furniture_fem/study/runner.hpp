@@ -77,9 +77,9 @@ inline std::string realisations_csv(const StudySpec& s, const std::vector<RunRes
   static const char* body_cols[] = {"state", "slide_m", "tilt_deg", "max_tilt_deg", "lift_m", "resting_on",
                                     "floor_force_peak_N", "wall_force_peak_N", "item_force_peak_N"};
   for (const auto& b : bodies)
-    for (const char* c : body_cols) out += "," + detail::csv_field(b + "." + c);
+    for (const char* c : body_cols) (out += ',') += detail::csv_field(b + "." + c);  // not "," + &&: GCC 12's -Wrestrict
   for (const auto& x : sections)
-    for (const char* c : section_components) out += "," + detail::csv_field(x + "." + c + "_abs_max");
+    for (const char* c : section_components) (out += ',') += detail::csv_field(x + "." + c + "_abs_max");
   out += ",diagnosis\n";
   const auto num = detail::exact_number;
   for (const auto& r : rows) {
@@ -87,7 +87,7 @@ inline std::string realisations_csv(const StudySpec& s, const std::vector<RunRes
     out += std::to_string(r.run) + "," + std::to_string(r.realisation) + "," + detail::csv_field(s.variant_name(r.variant)) +
            "," + std::to_string(p.level_index) + "," + detail::csv_field(s.motion_name(p.motion_index)) + "," +
            std::to_string(p.replicate);
-    for (const auto& [name, v] : parameter_columns(s, p)) out += "," + num(v);
+    for (const auto& [name, v] : parameter_columns(s, p)) (out += ',') += num(v);
     out += "," + r.status + "," + num(r.t_end);
     for (const auto& name : bodies) {
       const auto it = std::find_if(r.bodies.begin(), r.bodies.end(), [&](const BodyOutcome& b) { return b.name == name; });
@@ -130,10 +130,13 @@ class StudyFolder {
       } catch (const InputError&) {
         before = nullptr;
       }
+      // The differing keys are named: the user sees what changed, and whether it was meant.
       if (before != as_run)
         throw InputError(study_file.string(), 0, "--resume",
-                         "this folder holds another study (its study.json differs from " + study.source +
-                             "); resume with the same study file, or use another --out");
+                         "this folder holds another study: its study.json " +
+                             (before.is_null() ? std::string("cannot be read")
+                                               : "differs from " + study.source + " in " + detail::study_differences(before, as_run)) +
+                             "; resume with the same study file, or use another --out");
       load_results();
     } else {
       check_reusable(has_study);
@@ -196,13 +199,13 @@ class StudyFolder {
     } catch (const OutputError& e) {
       std::fprintf(stderr, "furniture_study: warning: study figures not written: %s\n", e.what());
     }
-    long failed_runs = 0, run_seconds_n = 0;
+    long run_seconds_n = 0;
     double run_seconds = 0;
     for (const auto& r : rows) {
-      failed_runs += r.status != "completed";
       run_seconds += r.wall_seconds;
       ++run_seconds_n;
     }
+    const StudyFailures failures = study_failures(rows);
     nlohmann::json j = {{"program", "furniture_study"},
                         {"furniture_fem_version", version_string},
                         {"status", status},
@@ -210,7 +213,7 @@ class StudyFolder {
                         {"runs", study_.num_runs()},
                         {"realisations", study_.num_realisations()},
                         {"done", static_cast<long>(rows.size())},
-                        {"not_completed", failed_runs},
+                        {"not_completed", failures.not_completed},
                         {"pending", study_.num_runs() - static_cast<long>(rows.size())},
                         {"resumed_from_previous", resumed_},
                         {"wall_seconds", timing.wall_seconds},
@@ -219,7 +222,24 @@ class StudyFolder {
                         {"mean_run_seconds", run_seconds_n ? run_seconds / run_seconds_n : 0.0},
                         {"handout_seconds_mean", timing.handout_seconds_mean ? nlohmann::json(*timing.handout_seconds_mean)
                                                                              : nlohmann::json()}};
+    if (failures.not_completed > 0) j["first_not_completed"] = first_not_completed_json(failures);
     detail::write_text_atomically(dir_ / "summary.json", j.dump(2) + "\n");
+  }
+
+  // The study's status once its runs are over: completed (every run done), failed (every run done
+  // and none completed), stopped (runs left: --resume continues).
+  std::string status(bool all_done) const {
+    if (!all_done) return "stopped";
+    std::lock_guard<std::mutex> lock(mutex_);
+    return failed_ == static_cast<long>(results_.size()) && failed_ > 0 ? "failed" : "completed";
+  }
+
+  // Why runs did not complete, in a sentence: the first one and how many others share its reason.
+  std::string not_completed_text(const StudyFailures& f) const {
+    return "the first, run " + std::to_string(f.first.run) + " (realisation " + std::to_string(f.first.realisation) +
+           ", variant '" + study_.variant_name(f.first.variant) + "'), " + f.first.status + ": " + f.first.diagnosis +
+           " [" + std::to_string(f.same_reason) + " of the " + std::to_string(f.not_completed) +
+           " runs not completed for this reason]";
   }
 
  private:
@@ -230,6 +250,14 @@ class StudyFolder {
   mutable std::mutex mutex_;
   std::map<long, RunResult> results_;
   long failed_ = 0, resumed_ = 0;
+
+  nlohmann::json first_not_completed_json(const StudyFailures& f) const {
+    return {{"run", f.first.run},
+            {"variant", study_.variant_name(f.first.variant)},
+            {"status", f.first.status},
+            {"diagnosis", f.first.diagnosis},
+            {"runs_for_this_reason", f.same_reason}};
+  }
 
   void load_results() {
     for (const auto& e : std::filesystem::directory_iterator(dir_ / "runs")) {
@@ -328,7 +356,7 @@ inline bool run_local(StudyFolder& folder, const std::vector<long>& pending, int
 }
 
 // The whole study on this machine: the folder, the pending runs on `workers` threads, the outputs.
-// Returns the status written to summary.json: completed, or stopped.
+// Returns the status written to summary.json: completed, failed (no run completed), or stopped.
 inline std::string run_study(const StudySpec& study, const StudyOptions& opt, const std::atomic<bool>* stop = nullptr) {
   const auto t0 = std::chrono::steady_clock::now();
   StudyFolder folder(study, opt);
@@ -336,7 +364,7 @@ inline std::string run_study(const StudySpec& study, const StudyOptions& opt, co
   timing.workers = opt.workers > 0 ? opt.workers : std::max(1u, std::thread::hardware_concurrency());
   const bool all = run_local(folder, folder.pending(), timing.workers, stop, opt.progress);
   timing.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const std::string status = all ? "completed" : "stopped";
+  const std::string status = folder.status(all);
   folder.finish(status, timing);
   return status;
 }

@@ -176,6 +176,14 @@ inline SceneSpec study_scene(const StudySpec& s, const nlohmann::json& scene_jso
   return spec;
 }
 
+}  // namespace furniture_fem
+
+#define FURNITURE_FEM_STUDY_INTERNAL
+#include "detail/run_start_checks.hpp"
+#undef FURNITURE_FEM_STUDY_INTERNAL
+
+namespace furniture_fem {
+
 inline StudySpec parse_study_json(const nlohmann::json& j, const std::string& source, const std::string& base_dir) {
   using json_io::ObjectReader;
   StudySpec s;
@@ -210,11 +218,20 @@ inline StudySpec parse_study_json(const nlohmann::json& j, const std::string& so
   }
 
   if (r.has("intensity")) detail::read_intensity(r.object("intensity"), s.intensity);
+  // An empty suite would silently run the scene's own motion instead.
+  if (r.has("ground_motions") && r.raw("ground_motions").is_array() && r.raw("ground_motions").empty())
+    r.fail(r.path("ground_motions"), "is empty: list at least one {\"name\", \"ground_motion\"}, or leave the key out "
+                                     "to run the scene's own ground_motion");
   r.array("ground_motions", [&](const nlohmann::json& v, const std::string& path) {
     const ObjectReader m(v, path, s.source);
     m.allow_only({"name", "ground_motion"});
     StudyMotion motion;
-    motion.name = m.string("name", "motion_" + std::to_string(s.motions.size() + 1));
+    // Required: the name labels the results and keys the realisations' random streams (a default by
+    // position would change the draws when the suite is reordered).
+    if (!m.has("name"))
+      m.fail(m.path("name"), "required: a name for the motion, e.g. \"kobe_ns\" (it labels the results and keys "
+                             "the realisations' random draws)");
+    motion.name = m.string("name", "");
     if (const auto why = detail::study_name_problem(motion.name); !why.empty()) m.fail(m.path("name"), why);
     if (!m.has("ground_motion") || !m.raw("ground_motion").is_object())
       m.fail(m.path("ground_motion"), "required: a ground_motion object as a scene file takes it");
@@ -282,6 +299,8 @@ inline StudySpec parse_study_json(const nlohmann::json& j, const std::string& so
       if (s.intensity.measure == IntensityMeasure::pga && src == MotionSource::points)
         r.fail("intensity.measure", "\"pga\" scales record files and synthetic motions, not \"points\" (" + what + ")");
     }
+  // Then each scene as its runs will start, at every level: what a run would refuse fails here.
+  detail::check_study_run_starts(s, r);
   return s;
 }
 

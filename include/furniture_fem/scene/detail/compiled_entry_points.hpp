@@ -1,9 +1,9 @@
 #pragma once
 // Internal: the scene module's entry points that the compiled scene runner (CMake target
-// furniture_fem::scene_compiled, src/scene/run_scene.cpp) defines once: parse_scene (reader.hpp) and
-// run_scene (runner.hpp). Its users get FURNITURE_FEM_COMPILED_SCENE and see the declarations below
-// only (FFEM_SCENE_DECLARED_ONLY); the library's unit defines them out of line; header-only use
-// defines them inline. Users include furniture_fem/scene/run_scene.hpp, not this file.
+// furniture_fem::scene_compiled, src/scene/run_scene.cpp) defines once: parse_scene (reader.hpp),
+// run_scene and check_run_start (runner.hpp). Its users get FURNITURE_FEM_COMPILED_SCENE and see the
+// declarations below only (FFEM_SCENE_DECLARED_ONLY); the library's unit defines them out of line;
+// header-only use defines them inline. Users include furniture_fem/scene/run_scene.hpp, not this file.
 #ifndef FURNITURE_FEM_SCENE_INTERNAL
 #error "furniture_fem/scene/detail/compiled_entry_points.hpp is internal: include <furniture_fem/scene/run_scene.hpp>"
 #endif
@@ -27,5 +27,6 @@ namespace furniture_fem {
 class RunObserver;
 SceneSpec parse_scene(const std::string& path);
 RunSummary run_scene(const SceneSpec& spec, const RunOptions& opt = {}, const std::vector<RunObserver*>& extra = {});
+void check_run_start(const SceneSpec& spec, const RunOptions& opt);
 }  // namespace furniture_fem
 #endif
