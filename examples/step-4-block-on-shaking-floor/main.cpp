@@ -76,17 +76,17 @@ ContactParams contact_parameters(const Block& b, double mu) {
 
 // The solver type: ASI-Gauss elements, the paper's Newmark, a sparse direct solver, and the room's
 // contact with the paper's law.
-using Sim = Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact<PaperLaw>>;
+using Sim = Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact>;
 
 // RoomContact takes one BodyContact per body (floor, wall and item-item parameters) and the rigid
 // planes of the room: here only the floor, the plane z = 0 with normal +z.
-RoomContact<PaperLaw> floor_contact(const Block& b, double mu) {
+RoomContact floor_contact(const Block& b, double mu) {
   BodyContact bc;
   bc.floor = bc.wall = bc.item = contact_parameters(b, mu);
   RigidPlane floor;
   floor.point = Vec3::Zero();
   floor.normal = Vec3::UnitZ();
-  return RoomContact<PaperLaw>(b.model, {bc}, {floor});
+  return RoomContact(b.model, {bc}, {floor}, PaperLaw{});
 }
 
 SimulationOptions options() {

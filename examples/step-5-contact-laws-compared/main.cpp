@@ -74,10 +74,10 @@ History run(const Block& block, const TableMotion& motion, Law law = {}) {
   BodyContact bc;
   bc.floor = bc.wall = bc.item = parameters(block);
   RigidPlane floor;  // z = 0, normal +z
-  RoomContact<Law> contact(block.model, {bc}, {floor}, law);
+  RoomContact contact(block.model, {bc}, {floor}, law);
   SimulationOptions o;
   o.dt = dt;
-  Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact<Law>> sim(block.model, Newmark::paper(), o,
+  Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact> sim(block.model, Newmark::paper(), o,
                                                                                   std::move(contact));
   sim.set_rigid(block.body);
   sim.run_until(0.5);  // settle

@@ -26,7 +26,7 @@ TEST_CASE("fastest_closing: the fastest node that closes on a floor or wall with
   wall.half_u = 1.0;
   wall.half_v = 10.0;
   wall.is_wall = true;
-  RoomContact<PaperLaw> contact(m, {BodyContact{}}, {RigidPlane{}, wall});
+  RoomContact contact(m, {BodyContact{}}, {RigidPlane{}, wall});
   const double L = 0.025, dt = 1e-3;
 
   std::vector<Vec3> x(m.num_nodes());

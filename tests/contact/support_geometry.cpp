@@ -95,7 +95,7 @@ TEST_CASE("at the members' surfaces, two box frames touch planes at their envelo
       for (int bit : {1, 2, 4})
         if (!(i & bit)) m.add_member("edge", corner[i], corner[i | bit], sec, mat, o);
   }
-  RoomContact<PaperLaw> contact(m, {BodyContact{}, BodyContact{}}, {RigidPlane{}});
+  RoomContact contact(m, {BodyContact{}, BodyContact{}}, {RigidPlane{}});
   contact.set_surface(m);
   contact.set_rigid(m, 0);
   contact.set_rigid(m, 1);
@@ -134,7 +134,7 @@ TEST_CASE("at the members' surfaces, a flexible frame's every node touches plane
   o.target_length = 0.1;
   m.add_member("x", n0, n1, sec, mat, o);
   m.add_member("y", n1, n2, sec, mat, o);
-  RoomContact<PaperLaw> contact(m, {BodyContact{}}, {RigidPlane{}});
+  RoomContact contact(m, {BodyContact{}}, {RigidPlane{}});
   contact.set_surface(m);
   const auto& points = contact.surface_points();
   REQUIRE(points.size() == 8 * m.body(body).nodes.size());

@@ -252,7 +252,7 @@ inline double critical_v_reg(double damping_over_weight, double dt, double gamma
 // integrator; the Model lives on the heap so the Simulation's reference to it stays valid.
 template <class Law, class Integrator = Newmark>
 struct BlockScene {
-  using Sim = Simulation<AsiGaussTimoshenko, Integrator, DirectLdltSolver, RoomContact<Law>>;
+  using Sim = Simulation<AsiGaussTimoshenko, Integrator, DirectLdltSolver, RoomContact>;
   std::unique_ptr<Model> model = std::make_unique<Model>();
   Box box;
   std::unique_ptr<Sim> sim;
@@ -262,7 +262,7 @@ struct BlockScene {
              std::vector<RigidPlane> planes = {floor_plane()}) {
     const int sec = model->add_section(tube()), mat = model->add_material(elastic_steel());
     box = add_box(*model, "block", sec, mat, spec);
-    RoomContact<Law> contact(*model, {same_everywhere(params(box))}, std::move(planes), std::move(law));
+    RoomContact contact(*model, {same_everywhere(params(box))}, std::move(planes), std::move(law));
     sim = std::make_unique<Sim>(*model, integrator, options, std::move(contact));
     if (rigid) sim->set_rigid(box.body);
   }
@@ -279,17 +279,11 @@ inline SimulationOptions options_dt(double dt) {
 
 }  // namespace ffem_dyn
 
-// The group's room simulations (Newmark, the direct solver, each scene law the tests run): their
-// constructor and step are compiled once, in compiled_simulations.cpp, instead of in each unit that
+// The group's room simulation (Newmark, the direct solver; every law, the law being a run-time kernel):
+// its constructor and step are compiled once, in compiled_simulations.cpp, instead of in each unit that
 // steps one (docs/performance.md, section 6). `extern` here, nothing there.
-#define FFEM_DYNAMICS_SIMULATION(EXTERN, LAW) \
-  FFEM_SIMULATION_RUN_MEMBERS(EXTERN, AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact<LAW>)
-#define FFEM_DYNAMICS_SIMULATIONS(EXTERN)                   \
-  FFEM_DYNAMICS_SIMULATION(EXTERN, PaperLaw)                \
-  FFEM_DYNAMICS_SIMULATION(EXTERN, PaperAnisotropicFloorLaw) \
-  FFEM_DYNAMICS_SIMULATION(EXTERN, SpringDashpotLaw)        \
-  FFEM_DYNAMICS_SIMULATION(EXTERN, HuntCrossleyLaw)         \
-  FFEM_DYNAMICS_SIMULATION(EXTERN, StickSlipLaw)
+#define FFEM_DYNAMICS_SIMULATIONS(EXTERN) \
+  FFEM_SIMULATION_RUN_MEMBERS(EXTERN, AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact)
 namespace furniture_fem {
 FFEM_DYNAMICS_SIMULATIONS(extern)
 }  // namespace furniture_fem

@@ -133,8 +133,8 @@ ThrowResult throw_beam(const Law& law, bool end_on, double v0, double dt, double
   if (tune) tune(p, r.mass, r.contacts);
   SimulationOptions o = options_dt(dt);
   o.gravity.setZero();
-  Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact<Law>> sim(
-      m, paper_newmark, o, RoomContact<Law>(m, {same_everywhere(p)}, {wall_plane(Vec3::Zero(), Vec3::UnitX())}, law));
+  Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact> sim(
+      m, paper_newmark, o, RoomContact(m, {same_everywhere(p)}, {wall_plane(Vec3::Zero(), Vec3::UnitX())}, law));
   sim.set_body_velocity(body, Vec3(-v0, 0, 0), Vec3::Zero(), Vec3::Zero());
   double l_min = 1;
   sim.run_until(0.1, [&](const auto& s, const StepInfo&) {
@@ -276,16 +276,15 @@ TEST_CASE("crossing beams: contact forces equal and opposite, no net torque, mom
   // simulation's contact policy at the current state every 10 steps.
   // group: the pair inside the step, the two beams a flexible group (docs/contact/implicit_contact.md).
   auto run = [](const auto& law, const char* name, bool group) {
-    using Law = std::decay_t<decltype(law)>;
     const Model m = crossing_beams();
     const int A = 0, B = 1;  // the bodies in the order crossing_beams() adds them
     ContactParams p = paper_params(m.body_mass(A), 0.3, 0.01);
     set_stick_spring(p, m.body_mass(A), 1, 100, 0.5);
     SimulationOptions o = options_dt(1e-4);
     o.gravity.setZero();
-    RoomContact<Law> contact(m, {same_everywhere(p), same_everywhere(p)}, {}, law);
+    RoomContact contact(m, {same_everywhere(p), same_everywhere(p)}, {}, law);
     contact.flexible_pairs_implicit = group;
-    Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact<Law>> sim(m, paper_newmark, o, std::move(contact));
+    Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact> sim(m, paper_newmark, o, std::move(contact));
     sim.set_body_velocity(A, Vec3(0.3, 0.1, -0.05), Vec3(0, 0, 0.5), m.body_centre_of_gravity(A));
     const Vec3 P0 = sim.linear_momentum(), about(0.3, -0.7, 0.5);
     double worst_force = 0, worst_torque = 0, worst_pair = 0, largest = 0, largest_friction = 0;
@@ -342,8 +341,8 @@ TEST_CASE("item-item parameters: the pair does not depend on which item comes fi
     const int A = 0;  // the first body crossing_beams() adds
     SimulationOptions o = options_dt(1e-4);
     o.gravity.setZero();
-    Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact<PaperLaw>> sim(
-        m, paper_newmark, o, RoomContact<PaperLaw>(m, {same_everywhere(on_a), same_everywhere(on_b)}, {}, PaperLaw{}));
+    Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact> sim(
+        m, paper_newmark, o, RoomContact(m, {same_everywhere(on_a), same_everywhere(on_b)}, {}, PaperLaw{}));
     sim.set_body_velocity(A, Vec3(0.3, 0.1, -0.05), Vec3(0, 0, 0.5), m.body_centre_of_gravity(A));
     sim.run_until(0.05);
     std::vector<Vec3> x;

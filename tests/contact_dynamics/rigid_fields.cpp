@@ -18,7 +18,7 @@ namespace {
 
 template <class Law>
 struct FieldsScene {
-  using Sim = Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact<Law>>;
+  using Sim = Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact>;
   std::unique_ptr<Model> model = std::make_unique<Model>();
   std::vector<Box> boxes;
   std::unique_ptr<Sim> sim;
@@ -32,7 +32,7 @@ struct FieldsScene {
     for (const Box& b : boxes) bodies.push_back(same_everywhere(params(b)));
     std::vector<RigidPlane> planes;
     if (floor) planes.push_back(floor_plane());
-    RoomContact<Law> contact(*model, bodies, planes, Law{});
+    RoomContact contact(*model, bodies, planes, Law{});
     if (hulls) contact.set_rigid_pair_hulls(*model);
     SimulationOptions o = options_dt(1e-3);
     o.rigid_fields = fields;

@@ -35,7 +35,7 @@ constexpr double floor_mu = 0.9;
 
 template <class Law>
 struct StackScene {
-  using Sim = Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact<Law>>;
+  using Sim = Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact>;
   std::unique_ptr<Model> model = std::make_unique<Model>();
   Box lower, upper;
   std::unique_ptr<Sim> sim;
@@ -52,7 +52,7 @@ struct StackScene {
       bc.item = params(*b, mu);
       bodies.push_back(bc);
     }
-    RoomContact<Law> contact(*model, bodies, {floor_plane()}, std::move(law));
+    RoomContact contact(*model, bodies, {floor_plane()}, std::move(law));
     contact.flexible_pairs_implicit = true;  // frames: a flexible group (rigid boxes: a rigid group either way)
     sim = std::make_unique<Sim>(*model, paper_newmark, options_dt(1e-3), std::move(contact));
     if (rigid) {
@@ -97,7 +97,7 @@ template <class Sim>
 double floor_force_z(Sim& sim, int body) {
   double fz = 0;
   for (const auto& pf : sim.contact().pair_forces())
-    if (pf.body_a == body && pf.body_b == RoomContact<PaperLaw>::floor_id) fz += pf.force_on_a.z();
+    if (pf.body_a == body && pf.body_b == RoomContact::floor_id) fz += pf.force_on_a.z();
   return fz;
 }
 

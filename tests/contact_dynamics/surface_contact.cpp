@@ -27,7 +27,7 @@ const Newmark paper_newmark = Newmark::paper();
 
 // A rigid box frame whose floor and wall contact acts at its members' surfaces.
 struct SurfaceBlock {
-  using Sim = Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact<SpringDashpotLaw>>;
+  using Sim = Simulation<AsiGaussTimoshenko, Newmark, DirectLdltSolver, RoomContact>;
   std::unique_ptr<Model> model = std::make_unique<Model>();
   Box box;
   std::unique_ptr<Sim> sim;
@@ -35,7 +35,7 @@ struct SurfaceBlock {
                double margin = 0.01 /* RoomContact's default */) {
     const int sec = model->add_section(tube()), mat = model->add_material(elastic_steel());
     box = add_box(*model, "block", sec, mat, spec);
-    RoomContact<SpringDashpotLaw> contact(*model, {same_everywhere(stiff_params(box, mu))}, {floor_plane()});
+    RoomContact contact(*model, {same_everywhere(stiff_params(box, mu))}, {floor_plane()}, SpringDashpotLaw{});
     contact.margin = margin;
     contact.set_surface(*model, surface);
     SimulationOptions options = options_dt(1e-3);

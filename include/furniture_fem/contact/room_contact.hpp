@@ -1,7 +1,7 @@
 #pragma once
 // furniture_fem/contact/room_contact.hpp: the contact policy of a furnished room on a shake table.
 //
-//   RoomContact<Law>  plugs into Simulation<..., Contact = RoomContact<Law>>
+//   RoomContact  plugs into Simulation<..., Contact = RoomContact>, with any contact law (its kernel)
 //
 // It applies a contact law (contact_laws.hpp) to three kinds of pairs, all in the table frame:
 //  - node against the floor (z = 0) and against the walls (planes, bounded): l is the node's distance
@@ -31,9 +31,12 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <type_traits>
 #include <vector>
 
 #include "cgal_adapter.hpp"
+#include "contact_law_kernel.hpp"
 #include "contact_laws.hpp"
 #include "pair_force.hpp"
 #include "../core/simulation.hpp"
@@ -72,18 +75,9 @@ struct RigidPlane {
   }
 };
 
-template <class Law>
-inline constexpr bool contact_law_has_history = false;
-template <class Normal, class Damping>
-inline constexpr bool contact_law_has_history<ContactLaw<Normal, Damping, StickSlip>> = true;
-
-template <class Law>
+// The contact law enters through its kernel (contact_law_kernel.hpp): RoomContact, and the Simulation
+// that holds it, are one type whatever the law.
 class RoomContact {
-  static constexpr bool law_has_history = contact_law_has_history<Law>;
-  static_assert(ContactLawPolicy<Law>,
-                "furniture_fem: RoomContact needs a contact law with force(kinematics, params, state) returning "
-                "ContactForce; see docs/contact/contact.md");
-
  public:
   static constexpr int floor_id = -1, wall_id = -2, obstacle_id = -3;
   // Candidate pairs come from boxes inflated by `margin`; the broad phase runs again as soon as any
@@ -103,15 +97,22 @@ class RoomContact {
   bool flexible_pairs_implicit = false;
 
   RoomContact() = default;
+  // With a law object (any ContactLawPolicy; the paper's law by default) or a kernel already made.
+  template <class Law = PaperLaw>
+    requires(!std::is_convertible_v<Law, std::shared_ptr<const ContactLawKernel>>)
   RoomContact(const Model& model, std::vector<BodyContact> bodies, std::vector<RigidPlane> planes, Law law = {})
+      : RoomContact(model, std::move(bodies), std::move(planes), make_contact_law_kernel(std::move(law))) {}
+  RoomContact(const Model& model, std::vector<BodyContact> bodies, std::vector<RigidPlane> planes,
+              std::shared_ptr<const ContactLawKernel> law)
       : law_(std::move(law)), bodies_(std::move(bodies)), planes_(std::move(planes)) {
+    if (!law_) throw ModelError("RoomContact: no contact law (a null kernel)");
     if (static_cast<int>(bodies_.size()) != model.num_bodies())
       throw ModelError("RoomContact: " + std::to_string(bodies_.size()) + " body contact records for " +
                        std::to_string(model.num_bodies()) + " bodies");
     for (const auto& b : bodies_) {
-      Law::validate(b.floor);
-      Law::validate(b.wall);
-      Law::validate(b.item);
+      law_->validate(b.floor);
+      law_->validate(b.wall);
+      law_->validate(b.item);
     }
     // A node's contact distance against a plane: half the width of its narrowest member (a corner
     // of 50 mm tubes: 25 mm; a caster node joined to a wide side-table beam: the caster's).
@@ -131,6 +132,7 @@ class RoomContact {
     node_state_.assign(static_cast<size_t>(model.num_nodes()) * planes_.size(), ContactState{});
     node_trial_ = node_state_;
     // Item-item pairs keep a history when the law has one, or when any friction sticks by return mapping.
+    const bool law_has_history = law_->has_history();
     pair_history_ = law_has_history;
     for (const auto& b : bodies_) pair_history_ = pair_history_ || b.item.stick_length > 0;
     // A body's floor and wall contacts keep a history on the same terms. Without one the surface
@@ -346,7 +348,7 @@ class RoomContact {
       const auto& B = view.model.elements()[ip.eb];
       add_pair_force(std::min(A.body, B.body), std::max(A.body, B.body), -ip.reported);
       ContactState st = committed_pair_state(ip.ea, ip.eb);
-      const auto nf = evaluate_segment_pair(law_, segment_pair(view, ip.ea, ip.eb), pair_params(view.model, ip.ea, ip.eb), st);
+      const auto nf = evaluate_segment_pair(*law_, segment_pair(view, ip.ea, ip.eb), pair_params(view.model, ip.ea, ip.eb), st);
       if (pair_history_) {
         if (nf.in_contact) pair_trial_.set(key(ip.ea, ip.eb), st);
         else pair_trial_.erase(key(ip.ea, ip.eb));
@@ -394,8 +396,7 @@ class RoomContact {
   int active_contacts() const { return active_; }
   long broad_phase_runs() const { return broad_runs_; }
   std::size_t candidate_pairs() const { return candidates_.size(); }
-  const Law& law() const { return law_; }
-  Law& law() { return law_; }
+  const ContactLawKernel& law() const { return *law_; }
 
  private:
   struct SurfaceGroup {
@@ -590,7 +591,7 @@ class RoomContact {
       return pc;
     }
     const NodeOnPlane node{pc.x, pc.v, L, view.dt, long_axis(view.model.node(n).body, view), Vec3::Zero()};
-    pc.force = detail::node_force(law_, node, l, pl.normal, plane_params(view.model, n, p, share), state);
+    pc.force = detail::node_force(*law_, node, l, pl.normal, plane_params(view.model, n, p, share), state);
     return pc;
   }
 
@@ -609,7 +610,7 @@ class RoomContact {
     // plane's own extent test above decides whether a wall panel is reached.
     const NodeOnPlane node{x, view.v.template segment<3>(6 * n), half_width_[n], view.dt, long_axis(body, view),
                            Vec3::Zero()};
-    return detail::node_force(law_, node, l, pl.normal, plane_params(view.model, n, p, share), state);
+    return detail::node_force(*law_, node, l, pl.normal, plane_params(view.model, n, p, share), state);
   }
   // The parameters of node n's contact with plane p, standing for `share` nodes.
   ContactParams plane_params(const Model& model, int n, size_t p, double share) const {
@@ -631,10 +632,7 @@ class RoomContact {
   }
   // Its regime for a reused factorisation (NodalContactTangent::status): stick, slip or clamped.
   int regime_of(const ContactForce& cf) const { return contact_status_code(cf.sticking, status_of(cf) == 2); }
-  bool clamps_tensile() const {
-    if constexpr (requires { law_.clamp_tensile; }) return law_.clamp_tensile;
-    else return false;
-  }
+  bool clamps_tensile() const { return law_->clamps_tensile(); }
 
   // Each rigid body's support points against each plane: those of the hull face turned towards the
   // plane take that face's share, the others their own node's (a corner the body tips onto).
@@ -877,7 +875,7 @@ class RoomContact {
 
   static long long key(int a, int b) { return (static_cast<long long>(a) << 32) | static_cast<unsigned>(b); }
 
-  Law law_;
+  std::shared_ptr<const ContactLawKernel> law_;
   std::vector<BodyContact> bodies_;
   std::vector<RigidPlane> planes_;
   std::vector<MeshObstacle> obstacles_;

@@ -352,7 +352,6 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
     in.in_range("frame_drift_refresh", 0, 0.1);
   }
   s.solver = r.enumeration("solver", detail::solver_names, s.solver, "solver");
-  if (const std::string why = detail::solver_problem(s.solver, s.contact.law); !why.empty()) r.fail(r.path("solver"), why);
   s.refresh_every = r.number("refresh_every", s.refresh_every);
   r.positive("refresh_every");
   s.duration = r.number("duration", s.duration);

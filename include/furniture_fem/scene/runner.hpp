@@ -534,8 +534,8 @@ RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt, const std:
       t_start);
 }
 
-// The run of the law at index I of scene_contact_laws, with the scene's linear solver (CG only where the
-// record allows it; validate() refuses the rest). The compiled scene runner (target
+// The run of the law at index I of scene_contact_laws, with the scene's linear solver (any law with either
+// solver: the law is a kernel of the one scene simulation). The compiled scene runner (target
 // furniture_fem::scene_compiled, src/scene/run_scene.cpp: every law instantiated once) defines
 // FURNITURE_FEM_COMPILED_SCENE for its users, who then see this declaration only and compile none of
 // the laws' simulations; header-only use (furniture_fem::scene) instantiates them here.
@@ -548,9 +548,8 @@ template <std::size_t I>
 RunSummary run_law(const SceneSpec& spec, const RunOptions& opt, const std::vector<RunObserver*>& extra,
                    const RunStart& t_start) {
   using R = scene_contact_laws::at<I>;
-  if constexpr (R::cg_allowed)
-    if (spec.solver != SolverKind::direct)
-      return run_composed<typename R::law, ConjugateGradientSolver>(spec, opt, extra, t_start);
+  if (spec.solver != SolverKind::direct)
+    return run_composed<typename R::law, ConjugateGradientSolver>(spec, opt, extra, t_start);
   return run_composed<typename R::law, DirectLdltSolver>(spec, opt, extra, t_start);
 }
 #endif

@@ -204,7 +204,6 @@ inline void validate(const SceneSpec& s) {
   if (detail::has_control_character(s.outputs.folder))
     fail("outputs.folder", "must not hold control characters (a NUL, a newline...)");
   const auto& g = s.ground_motion;
-  if (const std::string why = detail::solver_problem(s.solver, s.contact.law); !why.empty()) fail("solver", why);
   if (g.source == MotionSource::synthetic) {
     // Not applied to the synthetic motion (reading a file refuses the keys; a SceneSpec made in code is
     // checked here against the defaults).

@@ -8,8 +8,7 @@
 
 namespace furniture_fem {
 
-template <class Law>
-inline void RoomContact<Law>::element_contacts(const ContactView& view, Eigen::VectorXd& f) {
+inline void RoomContact::element_contacts(const ContactView& view, Eigen::VectorXd& f) {
   const Model& model = view.model;
   bool rerun = x_broad_.size() != view.x.size();
   if (!rerun) {
@@ -46,7 +45,7 @@ inline void RoomContact<Law>::element_contacts(const ContactView& view, Eigen::V
     const double L = pair_contact_distance(model, ea, eb);
     if (segments_apart_beyond(view.x[A.n1], view.x[A.n2], view.x[B.n1], view.x[B.n2], L)) continue;
     ContactState st = committed_pair_state(ea, eb);
-    const auto nf = evaluate_segment_pair(law_, segment_pair(view, ea, eb), pair_params(model, ea, eb), st);
+    const auto nf = evaluate_segment_pair(*law_, segment_pair(view, ea, eb), pair_params(model, ea, eb), st);
     if (pair_history_ && nf.in_contact) pair_trial_.set(key(ea, eb), st);
     if (!nf.in_contact) continue;
     // Two rigid (or, when asked, two flexible) implicit bodies: the simulation solves them together with
@@ -74,8 +73,7 @@ inline void RoomContact<Law>::element_contacts(const ContactView& view, Eigen::V
   }
 }
 
-template <class Law>
-inline SegmentPair RoomContact<Law>::segment_pair(const ContactView& view, int ea, int eb) {
+inline SegmentPair RoomContact::segment_pair(const ContactView& view, int ea, int eb) {
   const Model& model = view.model;
   const auto& A = model.elements()[ea];
   const auto& B = model.elements()[eb];
@@ -93,30 +91,25 @@ inline SegmentPair RoomContact<Law>::segment_pair(const ContactView& view, int e
   return sp;
 }
 
-template <class Law>
-inline double RoomContact<Law>::pair_contact_distance(const Model& model, int ea, int eb) {
+inline double RoomContact::pair_contact_distance(const Model& model, int ea, int eb) {
   return 0.5 * (model.section_of(ea).contact_width() + model.section_of(eb).contact_width());
 }
 
-template <class Law>
-inline ContactParams RoomContact<Law>::pair_params(const Model& model, int ea, int eb) const {
+inline ContactParams RoomContact::pair_params(const Model& model, int ea, int eb) const {
   return ContactParams::pair(bodies_[model.elements()[ea].body].item, bodies_[model.elements()[eb].body].item);
 }
 
-template <class Law>
-inline ContactState RoomContact<Law>::committed_pair_state(int ea, int eb) const {
+inline ContactState RoomContact::committed_pair_state(int ea, int eb) const {
   if (!pair_history_) return {};
   const ContactState* st = pair_state_.find(key(ea, eb));
   return st ? *st : ContactState{};
 }
 
-template <class Law>
-inline Vec3 RoomContact<Law>::reported_pair_force(int body_a, int body_b, const SegmentPairForces& nf) {
+inline Vec3 RoomContact::reported_pair_force(int body_a, int body_b, const SegmentPairForces& nf) {
   return body_a < body_b ? Vec3(nf.on_a0 + nf.on_a1) : Vec3(nf.on_b0 + nf.on_b1);
 }
 
-template <class Law>
-inline void RoomContact<Law>::obstacle_contacts(const ContactView& view, Eigen::VectorXd& f) {
+inline void RoomContact::obstacle_contacts(const ContactView& view, Eigen::VectorXd& f) {
   const Model& model = view.model;
   for (int n = 0; n < model.num_nodes(); ++n) {
     const int body = model.node(n).body;
@@ -133,7 +126,7 @@ inline void RoomContact<Law>::obstacle_contacts(const ContactView& view, Eigen::
       const NodeOnPlane node{view.x[n], view.v.template segment<3>(6 * n), L, view.dt, Vec3::Zero(), Vec3::Zero()};
       ContactState st;
       const ContactForce cf =
-          detail::node_force(law_, node, l, Vec3(d / l), bodies_[body].wall, st);
+          detail::node_force(*law_, node, l, Vec3(d / l), bodies_[body].wall, st);
       f.template segment<3>(6 * n) += cf.on_a;
       add_pair_force(body, obstacle_id, cf.on_a);
       ++active_;
@@ -141,29 +134,24 @@ inline void RoomContact<Law>::obstacle_contacts(const ContactView& view, Eigen::
   }
 }
 
-template <class Law>
-inline const detail::SupportGeometry& RoomContact<Law>::hull_of(int body) const {
+inline const detail::SupportGeometry& RoomContact::hull_of(int body) const {
   return surface_at(body) ? surface_groups_[body].front().geometry : support_[body];
 }
 
-template <class Law>
-inline std::pair<int, Vec3> RoomContact<Law>::hull_point(int body, int i) const {
+inline std::pair<int, Vec3> RoomContact::hull_point(int body, int i) const {
   if (!surface_at(body)) return {i, Vec3::Zero()};
   return {surface_points_[i].node, surface_points_[i].arm0};
 }
 
-template <class Law>
-inline double RoomContact<Law>::hull_distance(int a, int b) const {
+inline double RoomContact::hull_distance(int a, int b) const {
   return (surface_at(a) ? 0.0 : hull_half_width_[a]) + (surface_at(b) ? 0.0 : hull_half_width_[b]);
 }
 
-template <class Law>
-inline double RoomContact<Law>::hull_L(int a, int b) const {
+inline double RoomContact::hull_L(int a, int b) const {
   return hull_half_width_[a] + hull_half_width_[b];
 }
 
-template <class Law>
-inline void RoomContact<Law>::update_hull_pairs(const Model& model) {
+inline void RoomContact::update_hull_pairs(const Model& model) {
   const std::size_t nb = bodies_.size();
   hull_pair_.assign(hulls_on_ ? nb * nb : 0, 0);
   hull_half_width_.assign(nb, 0.0);
@@ -203,13 +191,11 @@ inline void RoomContact<Law>::update_hull_pairs(const Model& model) {
     for (std::size_t b = a + 1; b < nb; ++b) any_element_pairs_ = any_element_pairs_ || !hull_pair_[a * nb + b];
 }
 
-template <class Law>
-inline long long RoomContact<Law>::hull_key(detail::HullPointKind kind, long long p, long long q, long long r) {
+inline long long RoomContact::hull_key(detail::HullPointKind kind, long long p, long long q, long long r) {
   return (1LL << 62) | (static_cast<long long>(kind) << 60) | (p << 40) | (q << 20) | r;
 }
 
-template <class Law>
-inline long long RoomContact<Law>::hull_key(const detail::HullContactPoint& pt, int inc, int ref) {
+inline long long RoomContact::hull_key(const detail::HullContactPoint& pt, int inc, int ref) {
   using K = detail::HullPointKind;
   switch (pt.kind) {
     case K::corner: return hull_key(pt.kind, pt.id, 0, ref);
@@ -220,15 +206,13 @@ inline long long RoomContact<Law>::hull_key(const detail::HullContactPoint& pt, 
   return -1;
 }
 
-template <class Law>
-inline ContactState RoomContact<Law>::committed_hull_state(const HullContact& hc) const {
+inline ContactState RoomContact::committed_hull_state(const HullContact& hc) const {
   if (!pair_history_ || hc.key < 0) return {};
   const ContactState* st = pair_state_.find(hc.key);
   return st ? *st : ContactState{};
 }
 
-template <class Law>
-inline void RoomContact<Law>::hull_contacts(const ContactView& view, Eigen::VectorXd& f) {
+inline void RoomContact::hull_contacts(const ContactView& view, Eigen::VectorXd& f) {
   if (!view.rotations)
     throw ModelError("RoomContact: rigid pairs by their hulls need the nodes' rotations in the ContactView");
   const std::size_t nb = bodies_.size();
@@ -300,13 +284,11 @@ inline void RoomContact<Law>::hull_contacts(const ContactView& view, Eigen::Vect
     }
 }
 
-template <class Law>
-inline Vec3 RoomContact<Law>::point_velocity(const ContactView& view, int n, const Vec3& arm) {
+inline Vec3 RoomContact::point_velocity(const ContactView& view, int n, const Vec3& arm) {
   return Vec3(view.v.template segment<3>(6 * n)) + Vec3(view.v.template segment<3>(6 * n + 3)).cross(arm);
 }
 
-template <class Law>
-inline ContactForce RoomContact<Law>::hull_contact_force(const ContactView& view, const HullContact& c, ContactState& state) const {
+inline ContactForce RoomContact::hull_contact_force(const ContactView& view, const HullContact& c, ContactState& state) const {
   const Mat3& Ra = (*view.rotations)[c.node_a];
   const Mat3& Rb = (*view.rotations)[c.node_b];
   const Vec3 arm_a = Ra * c.arm_a0, arm_b = Rb * c.arm_b0;
@@ -321,11 +303,10 @@ inline ContactForce RoomContact<Law>::hull_contact_force(const ContactView& view
                          point_velocity(view, c.node_b, arm_b)};
   ContactParams prm = ContactParams::pair(bodies_[c.body_a].item, bodies_[c.body_b].item);
   if (c.share != 1.0) prm = scaled_penalty(prm, c.share);
-  return detail::node_force(law_, node, gap + c.L, n, prm, state);
+  return detail::node_force(*law_, node, gap + c.L, n, prm, state);
 }
 
-template <class Law>
-inline void RoomContact<Law>::apply_hull_force(const ContactView& view, const HullContact& c, const Vec3& F, Eigen::VectorXd& f) {
+inline void RoomContact::apply_hull_force(const ContactView& view, const HullContact& c, const Vec3& F, Eigen::VectorXd& f) {
   const Mat3& Ra = (*view.rotations)[c.node_a];
   const Mat3& Rb = (*view.rotations)[c.node_b];
   f.template segment<3>(6 * c.node_a) += F;

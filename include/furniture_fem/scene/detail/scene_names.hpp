@@ -52,16 +52,6 @@ inline constexpr EnumNames<IntegratorKind, 3> integrator_names{
 inline constexpr EnumNames<ScaleMeasure, 2> scale_measure_names{{{ScaleMeasure::pga, "pga"}, {ScaleMeasure::pgv, "pgv"}}};
 inline constexpr EnumNames<SolverKind, 2> solver_names{{{SolverKind::cg, "cg"}, {SolverKind::direct, "direct"}}};
 
-// Why the linear solver cannot run with the contact law, or "": the runner builds the CG solver only for
-// the laws whose record allows it (each law-solver pair is a separate instantiation of the stepping).
-// `solver: "cg"` with another law was replaced by "direct" silently (issue 12).
-inline std::string solver_problem(SolverKind solver, ContactLawKind law) {
-  if (solver != SolverKind::cg || scene_law(law).cg_allowed) return {};
-  return "\"cg\" is available with the contact laws " +
-         law_name_list([](const SceneLawInfo& l) { return l.cg_allowed; }) + " only; the law \"" +
-         enum_name(law_names, law) + "\" runs with \"direct\" (set \"solver\": \"direct\")";
-}
-
 inline void read_range(const ObjectReader& r, std::string_view key, double lo, double hi, bool lo_exclusive) {
   if (!r.has(key)) return;
   const double v = r.raw(key).get<double>();

@@ -11,7 +11,6 @@ namespace furniture_fem {
 struct HuntCrossleySceneLaw : SceneLawDefaults {
   static constexpr std::string_view name = "hunt_crossley";
   using law = HuntCrossleyLaw;
-  static constexpr bool cg_allowed = false;
   static constexpr std::array<std::string_view, 3> parameters{"mu", "mu_long", "stiffness"};
 };
 

@@ -50,7 +50,6 @@ inline constexpr ContactLawKind law_kind{detail::index_in<R>(scene_contact_laws{
 // A record's statements as values, for the code that reads a law at run time.
 struct SceneLawInfo {
   std::string_view name;
-  bool cg_allowed;
   std::span<const std::string_view> parameters;
   std::string_view own_stick_spring;
   std::optional<ImplicitContact> default_implicit;
@@ -69,7 +68,7 @@ struct SceneLawInfo {
 namespace detail {
 template <SceneContactLaw R>
 constexpr SceneLawInfo info_of() {
-  return {R::name,           R::cg_allowed,           R::parameters,
+  return {R::name,           R::parameters,
           R::own_stick_spring, R::default_implicit,   R::unused_item_parameters,
           R::unused_item_parameters_why, &R::item_base, &R::item_pair};
 }

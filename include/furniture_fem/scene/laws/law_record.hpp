@@ -112,7 +112,6 @@ consteval bool declares_known_keys() {
 template <class R>
 concept SceneContactLaw = std::derived_from<R, SceneLawDefaults> && ContactLawPolicy<typename R::law> && requires {
   { R::name } -> std::convertible_to<std::string_view>;
-  { R::cg_allowed } -> std::convertible_to<bool>;
   { R::parameters.size() } -> std::convertible_to<std::size_t>;
 } && detail::declares_known_keys<R>();
 

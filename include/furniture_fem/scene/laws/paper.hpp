@@ -10,7 +10,6 @@ namespace furniture_fem {
 struct PaperSceneLaw : SceneLawDefaults {
   static constexpr std::string_view name = "paper";
   using law = PaperLaw;
-  static constexpr bool cg_allowed = true;
   static constexpr std::array<std::string_view, 5> parameters{"alpha_kgf", "dc_kgf", "q", "mu", "mu_long"};
 };
 

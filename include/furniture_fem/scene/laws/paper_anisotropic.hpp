@@ -11,7 +11,6 @@ namespace furniture_fem {
 struct PaperAnisotropicSceneLaw : SceneLawDefaults {
   static constexpr std::string_view name = "paper_anisotropic";
   using law = PaperAnisotropicFloorLaw;
-  static constexpr bool cg_allowed = true;
   static constexpr std::array<std::string_view, 6> parameters{"alpha_kgf", "dc_kgf", "q", "mu", "mu_long", "mu_short"};
 };
 

@@ -11,7 +11,6 @@ namespace furniture_fem {
 struct SpringDashpotSceneLaw : SceneLawDefaults {
   static constexpr std::string_view name = "spring_dashpot";
   using law = SpringDashpotLaw;
-  static constexpr bool cg_allowed = false;
   static constexpr std::array<std::string_view, 4> parameters{"mu", "mu_long", "stiffness", "damping"};
 };
 

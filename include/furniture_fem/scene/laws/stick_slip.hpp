@@ -11,7 +11,6 @@ namespace furniture_fem {
 struct StickSlipSceneLaw : SceneLawDefaults {
   static constexpr std::string_view name = "stick_slip";
   using law = StickSlipLaw;
-  static constexpr bool cg_allowed = false;
   static constexpr std::array<std::string_view, 7> parameters{"alpha_kgf", "dc_kgf", "q",      "mu",
                                                               "mu_long",   "stiffness", "damping"};
   static constexpr std::string_view own_stick_spring = "its tangential spring is k_t";

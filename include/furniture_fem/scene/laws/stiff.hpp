@@ -14,7 +14,6 @@ namespace furniture_fem {
 struct StiffSceneLaw : SceneLawDefaults {
   static constexpr std::string_view name = "stiff";
   using law = SpringDashpotLaw;
-  static constexpr bool cg_allowed = false;
   static constexpr std::array<std::string_view, 2> parameters{"mu", "mu_long"};
   static constexpr std::array<std::string_view, 3> unused_item_parameters{"alpha_kgf", "dc_kgf", "alpha_scale"};
   static constexpr std::string_view unused_item_parameters_why =
