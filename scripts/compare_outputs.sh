@@ -6,8 +6,8 @@
 #   scripts/compare_outputs.sh BASE_BINARY NEW_BINARY [--full]
 #
 # Scenes: the default job (1 s; --full: its 10 s), examples/scenes/configuration3_rigid.json (2 s), and
-# examples/scenes/single_cabinet.json under each built-in contact law (1 s, direct solver; also CG for the
-# laws that allow it). Results in ${FFEM_COMPARE_OUT:-/tmp/ffem_compare}/{base,new}/<case>.
+# examples/scenes/single_cabinet.json under each built-in contact law (1 s, direct solver; also CG under the
+# paper's two laws: binaries before issue 48's law kernel refuse CG with the others). Results in ${FFEM_COMPARE_OUT:-/tmp/ffem_compare}/{base,new}/<case>.
 set -euo pipefail
 if [[ $# -lt 2 ]]; then
   sed -n 2,11p "$0" | sed 's/^# \{0,1\}//'

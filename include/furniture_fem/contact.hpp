@@ -11,9 +11,12 @@
 //                OFF/OBJ/STL (contact/cgal_adapter.hpp; heavy: include contact/contact_laws.hpp alone in
 //                translation units that need only the laws)
 //
-//   room         RoomContact: every body against floor, walls, obstacles and each other, for a Simulation
-//                (contact/room_contact.hpp)
+//   kernel       ContactLawKernel, make_contact_law_kernel: a law behind one run-time interface
+//                (contact/contact_law_kernel.hpp; light)
+//   room         RoomContact: every body against floor, walls, obstacles and each other, for a Simulation,
+//                one type for every law (contact/room_contact.hpp)
 #include "contact/contact_geometry.hpp"
 #include "contact/contact_laws.hpp"
+#include "contact/contact_law_kernel.hpp"
 #include "contact/cgal_adapter.hpp"
 #include "contact/room_contact.hpp"
