@@ -1,14 +1,9 @@
-# A unit linked to furniture_fem::scene_compiled that builds a scene's simulation itself
-# (SceneSimulation<Law, Solver> of a scene law) takes that simulation's constructor and step from the
-# library (scene/scene_simulation.hpp declares them extern): undefined (U) in its object, not compiled
-# there (weak, W). -DOBJECTS=<test_scene's object files>; the unit checked: test_points_and_block.
-string(REPLACE "," ";" objects "${OBJECTS}")
-list(FILTER objects INCLUDE REGEX "test_points_and_block\\.cpp\\.o$")
-list(LENGTH objects n)
-if(NOT n EQUAL 1)
-  message(FATAL_ERROR "test_points_and_block's object not among ${OBJECTS}")
-endif()
-set(OBJECT ${objects})
+# Units linked to furniture_fem::scene_compiled that build a scene's simulation themselves
+# (SceneSimulation<Law, Solver>; test_points_and_block among test_scene's) take that simulation's
+# constructor and step from the library (scene/scene_simulation.hpp declares them extern): undefined
+# (U) in their objects, compiled (weak, W) in none. -DOBJECTS=<test_scene's object files (its batches
+# of files, or one per file)>.
+string(REPLACE "," ";" OBJECT "${OBJECTS}")
 execute_process(COMMAND nm -C ${OBJECT} OUTPUT_VARIABLE symbols RESULT_VARIABLE rc)
 if(rc)
   message(FATAL_ERROR "nm failed on ${OBJECT}")

@@ -17,6 +17,8 @@
 using namespace furniture_fem;
 using Catch::Matchers::WithinAbs;
 
+namespace cgal_adapter_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 std::vector<std::pair<int, int>> brute_force_pairs(const std::vector<ElementBox>& boxes, bool same_body) {
@@ -464,3 +466,5 @@ TEST_CASE("mesh obstacle: a vertex farther than 1e6 m is a ModelError, not a CGA
   far.vertices[2] = Vec3(0, 0.2, -1e6);  // on the bound: accepted
   CHECK(MeshObstacle(far, "near.obj").num_triangles() == 1);
 }
+
+}  // namespace cgal_adapter_tests

@@ -10,6 +10,8 @@
 
 using namespace furniture_fem;
 
+namespace fastest_closing_tests {  // this file's own names (its group compiles files in batches)
+
 TEST_CASE("fastest_closing: the fastest node that closes on a floor or wall within the step", "[contact][impact]") {
   // Two nodes of one member (a 50 mm tube: contact distance 25 mm), the floor z = 0 and a wall x = 1
   // facing -X that spans y in [-1, 1] only.
@@ -60,3 +62,5 @@ TEST_CASE("fastest_closing: the fastest node that closes on a floor or wall with
   place(b, Vec3(1 - L - 0.001, 0, 0.5), Vec3(1.5, 0, 0));
   CHECK(fastest() == Approx(2.0));
 }
+
+}  // namespace fastest_closing_tests

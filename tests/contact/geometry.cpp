@@ -9,6 +9,8 @@
 using namespace furniture_fem;
 using Catch::Matchers::WithinAbs;
 
+namespace geometry_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 // Distance from a point to a segment by projection and clamping (the reference's building block).
@@ -309,3 +311,5 @@ TEST_CASE("point and segment against a triangle", "[contact][geometry]") {
     }
   }
 }
+
+}  // namespace geometry_tests

@@ -12,6 +12,8 @@
 
 using namespace furniture_fem;
 
+namespace hull_pair_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 // A box's 8 corners, `size` along its axes, its bottom centre at `base`, turned by `yaw` about z and
@@ -181,3 +183,5 @@ TEST_CASE("hull separation: apart, touching, nested", "[contact][hulls]") {
   // A small box inside the big one (a chair under a desk's hull): it overlaps by at least its own size.
   CHECK(sep(Hull(box({0.2, 0.2, 0.2}, {0.1, 0.1, 0.3}))) < -0.19);
 }
+
+}  // namespace hull_pair_tests

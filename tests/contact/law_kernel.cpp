@@ -10,6 +10,8 @@
 
 using namespace furniture_fem;
 
+namespace law_kernel_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 template <class Law>
 void check_kernel(const ContactParams& p, bool history, bool clamps) {
@@ -70,3 +72,5 @@ TEST_CASE("RoomContact refuses a null law kernel", "[contact][laws][kernel]") {
                     Catch::Contains("no contact law"));
   CHECK_NOTHROW(RoomContact(m, {BodyContact{}}, {RigidPlane{}}, make_contact_law_kernel(SpringDashpotLaw{})));
 }
+
+}  // namespace law_kernel_tests

@@ -12,6 +12,8 @@ using namespace furniture_fem;
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;
 
+namespace laws_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 constexpr double g0 = 9.80665;
 
@@ -537,3 +539,5 @@ TEST_CASE("laws are checked by the ContactLawPolicy concept; user laws and parts
   p.alpha = 100;
   CHECK_THAT(cubic.force(plane_kinematics(0.04, 0.05, Vec3::Zero()), p, st).normal, WithinRel(100 * 0.008, 1e-14));
 }
+
+}  // namespace laws_tests

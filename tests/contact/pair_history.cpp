@@ -12,6 +12,8 @@
 
 using namespace furniture_fem;
 
+namespace pair_history_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 ContactState state_of(int i) {
   ContactState s;
@@ -97,3 +99,5 @@ TEST_CASE("pair history: its checkpoint reads as the unordered_map's it replaced
     CHECK(same(map_back.at(key), st));
   }
 }
+
+}  // namespace pair_history_tests

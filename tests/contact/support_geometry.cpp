@@ -13,6 +13,8 @@
 
 using namespace furniture_fem;
 
+namespace support_geometry_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 // A 0.4 x 0.3 x 0.5 m box: its 8 corners, a node at the middle of every edge and one at each face's
@@ -154,3 +156,5 @@ TEST_CASE("at the members' surfaces, a flexible frame's every node touches plane
   CHECK(contact.surface_points().empty());
   CHECK(contact.plane_nodes().size() == m.body(body).nodes.size());
 }
+
+}  // namespace support_geometry_tests

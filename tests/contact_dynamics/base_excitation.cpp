@@ -21,6 +21,8 @@
 using namespace furniture_fem;
 using Catch::Matchers::WithinRel;
 
+namespace base_excitation_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 // A 1 m vertical cantilever of 50 x 30 x 2 tube, clamped at the origin, 20 ASI-Gauss elements
@@ -161,3 +163,5 @@ TEST_CASE("base excitation: linearity in the level, 1-D against 3-D, and one com
   // Superposition of the three components, to the same nonlinearity bound (1.4e-5 measured).
   CHECK(sup < 1e-4 * std::max(peak, peak_y));
 }
+
+}  // namespace base_excitation_tests

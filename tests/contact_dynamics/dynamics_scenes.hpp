@@ -218,12 +218,20 @@ inline ContactParams paper_params(double mass, double mu, double v_reg) {
   return p;
 }
 
-// The tangential spring of the stick-slip law for a rigid block of mass M on n contacts: the
-// block's tangential mode has omega_t^2 = n k_t / M and damping ratio zeta_t (n c_t = 2 zeta_t M omega_t).
-// The `stiff` rule as the scenes set it (set_stiff_contact), with the scenes' stick length.
-inline ContactParams stiff_params(const Box& b, double mu) {
+// The paper's Newmark scheme, as the scenes use it.
+inline const Newmark paper_newmark = Newmark::paper();
+
+// The paper's law for a box as the scenes set it: their v_reg (1 mm/s) and stick length (10 um), so
+// friction sticks.
+inline ContactParams paper_stick(const Box& b, double mu) {
   ContactParams p = paper_params(b.mass, mu, 1e-3);
   p.stick_length = 1e-5;
+  return p;
+}
+
+// The `stiff` rule as the scenes set it (set_stiff_contact), with the scenes' stick length.
+inline ContactParams stiff_params(const Box& b, double mu) {
+  ContactParams p = paper_stick(b, mu);
   set_stiff_contact(*b.model, b.body, p);
   return p;
 }

@@ -18,17 +18,12 @@
 
 using namespace ffem_dyn;
 
+namespace holding_still_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
-const Newmark paper_newmark = Newmark::paper();
-constexpr double stick_length = 1e-5;  // the scenes' default
-
-// Per-law parameters for a box of mass M on n resting nodes, friction mu, sticking friction.
-ContactParams paper_stick(const Box& b, double mu) {
-  ContactParams p = paper_params(b.mass, mu, 1e-3);  // the scenes' v_reg
-  p.stick_length = stick_length;
-  return p;
-}
+// Per-law parameters for a box of mass M on n resting nodes, friction mu, sticking friction (the
+// paper's: paper_stick, dynamics_scenes.hpp).
 // The `stiff` rule as the scenes use it (set_stiff_contact): 2.5 um under the weight shared by the
 // resting nodes, damped critically for the item's vertical and rocking motion.
 ContactParams stiff(const Box& b, double mu) {
@@ -405,3 +400,5 @@ TEST_CASE("a reused factorisation refines small contact changes: the same slide 
   CHECK(updated.refinement_solves == 0);
   CHECK(refined.factorizations < updated.factorizations);
 }
+
+}  // namespace holding_still_tests

@@ -17,10 +17,11 @@ using namespace ffem_dyn;
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;
 
+namespace impacts_and_pairs_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 constexpr double pi = std::numbers::pi;
-const Newmark paper_newmark = Newmark::paper();
 
 // Beam A along X at z = 40 mm, offset in Y; beam B at 60 degrees in the X-Y plane through
 // (0.2, 0, 0): their centre lines cross 40 mm apart, away from both midpoints. Bodies A (0), B (1).
@@ -369,3 +370,5 @@ TEST_CASE("item-item parameters: the pair does not depend on which item comes fi
   CHECK(moved > 1e-6);  // the values matter: a run with item a's values on both differs
   CHECK(differ == 0.0);
 }
+
+}  // namespace impacts_and_pairs_tests

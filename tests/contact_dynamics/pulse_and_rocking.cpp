@@ -13,9 +13,10 @@ using namespace ffem_dyn;
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;
 
+namespace pulse_and_rocking_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
-const Newmark paper_newmark = Newmark::paper();
 
 // The pulse of tests 3 and 7: A = 0.5 g during t0 = 0.3 s on a 0.4 x 0.3 x 0.3 m block, mu = 0.3.
 // In the table frame the block gets -M A g while the pulse lasts and friction mu W against its
@@ -262,3 +263,5 @@ TEST_CASE("a tall block starts to rock at a table acceleration g b/h, and not be
     }
   }
 }
+
+}  // namespace pulse_and_rocking_tests

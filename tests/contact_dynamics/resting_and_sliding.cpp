@@ -12,11 +12,12 @@
 
 using namespace ffem_dyn;
 
+namespace resting_and_sliding_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
-// The paper's Newmark (beta 4/9, gamma 5/6) with carry-over of the unbalanced force: the scheme the
-// paper's group uses, one solve per step.
-const Newmark paper_newmark = Newmark::paper();
+// gamma of the paper's Newmark (paper_newmark: beta 4/9, gamma 5/6, carry-over of the unbalanced
+// force, one solve per step: the scheme the paper's group uses).
 constexpr double paper_gamma = 5.0 / 6.0;
 
 }  // namespace
@@ -269,3 +270,5 @@ TEST_CASE("the regularised paper friction creeps below mu g at v = F v_reg / (mu
   // for the normal force's split between penalty and damping while the tilt settles.
   CHECK_THAT(v, Catch::Matchers::WithinRel(v_closed, 1e-3));
 }
+
+}  // namespace resting_and_sliding_tests

@@ -14,6 +14,8 @@
 
 using namespace ffem_dyn;
 
+namespace rigid_fields_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 template <class Law>
@@ -74,12 +76,6 @@ Gap run_both(Scene& a, Scene& b, double t_end, const std::function<Vec3(double)>
                              {ea.kinetic, eb.kinetic}})
     g.work = std::max(g.work, std::abs(x - y) / scale);
   return g;
-}
-
-ContactParams paper_stick(const Box& b, double mu) {
-  ContactParams p = paper_params(b.mass, mu, 1e-3);
-  p.stick_length = 1e-5;
-  return p;
 }
 
 }  // namespace
@@ -234,3 +230,5 @@ TEST_CASE("a rigid stack by its hulls: the nodes its step does not read are plac
       }
     }
 }
+
+}  // namespace rigid_fields_tests

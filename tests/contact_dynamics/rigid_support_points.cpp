@@ -9,9 +9,9 @@
 
 using namespace ffem_dyn;
 
-namespace {
+namespace rigid_support_points_tests {  // this file's own names (its group compiles files in batches)
 
-const Newmark paper_newmark = Newmark::paper();
+namespace {
 
 // A rigid block, its floor contact at the hull's vertices (reduced) or at every node.
 BlockScene<PaperLaw> rigid_block(const BoxSpec& spec, bool reduced, double mu = 0.3) {
@@ -95,3 +95,5 @@ TEST_CASE("a raised rigid block rocks on its corners as on its pivot lines", "[c
   CHECK(lift[1] > 0.002);  // it rocks: twice the resting penetration and more
   CHECK(std::abs(lift[1] / lift[0] - 1) < 0.02);
 }
+
+}  // namespace rigid_support_points_tests

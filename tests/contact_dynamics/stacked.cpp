@@ -23,9 +23,10 @@
 
 using namespace ffem_dyn;
 
+namespace stacked_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
-const Newmark paper_newmark = Newmark::paper();
 
 // Lower box 0.6 x 0.3 x 0.3 m on the floor; the upper 0.3 x 0.4 x 0.3 m across it, its bottom
 // centre lines 50 mm (one member width) above the lower's top ones: the members cross at four points.
@@ -64,11 +65,6 @@ struct StackScene {
   Vec3 relative() const { return centre_of_mass(*sim, upper.body) - centre_of_mass(*sim, lower.body); }
 };
 
-ContactParams paper_stick(const Box& b, double mu) {
-  ContactParams p = paper_params(b.mass, mu, 1e-3);
-  p.stick_length = 1e-5;  // the scenes' default
-  return p;
-}
 ContactParams stiff_spring(const Box& b, double mu) {
   ContactParams p = paper_stick(b, mu);
   set_stiff_contact(*b.model, b.body, p);
@@ -258,3 +254,5 @@ TEST_CASE("a rigid stack slides on the floor as one, as Coulomb says", "[contact
 TEST_CASE("a flexible stack slides on the floor as one, as Coulomb says", "[contact_dynamics][stacked][implicit][full]") {
   stack_slides_as_one(false);
 }
+
+}  // namespace stacked_tests

@@ -23,9 +23,10 @@
 using namespace ffem_dyn;
 using Catch::Matchers::WithinAbs;
 
+namespace stiff_law_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
-const Newmark paper_newmark = Newmark::paper();
 
 // Blocks standing on their two bottom edges along Y only (raise: the X edges are lifted), so they
 // rock about clean pivot lines x = +-bx/2.
@@ -347,3 +348,5 @@ TEST_CASE("the ledger's contact work as applied is what the items got: a block d
       CHECK(worst < 1e-7 * ke0);
     }
 }
+
+}  // namespace stiff_law_tests

@@ -21,9 +21,10 @@
 
 using namespace ffem_dyn;
 
+namespace surface_contact_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
-const Newmark paper_newmark = Newmark::paper();
 
 // A rigid box frame whose floor and wall contact acts at its members' surfaces.
 struct SurfaceBlock {
@@ -191,3 +192,5 @@ TEST_CASE("at the members' surfaces the reach lists do not change a flexible fra
   for (std::size_t k = 1; k < end.size(); ++k)
     for (std::size_t n = 0; n < end[0].size(); ++n) REQUIRE(end[k][n] == end[0][n]);
 }
+
+}  // namespace surface_contact_tests

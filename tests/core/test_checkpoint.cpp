@@ -12,6 +12,8 @@
 
 using namespace furniture_fem;
 
+namespace checkpoint_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 // A clamped steel column (8 ASI-Gauss elements) with a 30 kg head, shaken hard enough for a plastic
@@ -186,3 +188,5 @@ TEST_CASE("a checkpoint of another model or a truncated one is refused, naming t
     REQUIRE_THROWS_WITH(r.finish(), Catch::Contains("run/checkpoint.bin") && Catch::Contains("5 bytes left over"));
   }
 }
+
+}  // namespace checkpoint_tests

@@ -15,6 +15,8 @@
 
 using namespace furniture_fem;
 
+namespace concepts_tests {  // this file's own names (its group compiles files in batches)
+
 // ---- docs/core/concept_element.md: a minimal Element policy ------------------------------------------
 // The elastic linear Timoshenko beam with its single integration point at the centre (s = 0). It works
 // in the element's corotated frame: d holds the local deformations [u1 v1 w1 tx1 ty1 tz1 u2 ... tz2]
@@ -183,3 +185,5 @@ TEST_CASE("a user LinearSolver policy composes into a Simulation", "[concepts][s
   }
   CHECK((d2.displacement(c.tip) - s2.displacement(c.tip)).norm() < 1e-9 * s2.displacement(c.tip).norm());
 }
+
+}  // namespace concepts_tests

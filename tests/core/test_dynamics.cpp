@@ -13,6 +13,8 @@
 
 using namespace furniture_fem;
 
+namespace dynamics_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 // An L-shaped free frame out of the X-Y plane (two members of 6 ASI-Gauss elements, 50 x 30 tubes),
@@ -321,3 +323,5 @@ TEST_CASE("a time step below SimulationOptions::min_dt is refused, naming dt", "
   REQUIRE(sim.time() == SimulationOptions::min_dt);
   REQUIRE(sim.position(0).allFinite());
 }
+
+}  // namespace dynamics_tests

@@ -15,6 +15,8 @@
 
 using namespace furniture_fem;
 
+namespace integrators_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 constexpr double pi = std::numbers::pi;
@@ -248,3 +250,5 @@ TEST_CASE("the odeint system refuses structural damping, naming it", "[integrato
   Simulation<AsiGaussTimoshenko> undamped(m, Newmark::paper(), opt);
   CHECK_NOTHROW(OdeintSystem<Simulation<AsiGaussTimoshenko>>(undamped));
 }
+
+}  // namespace integrators_tests

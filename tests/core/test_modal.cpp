@@ -12,6 +12,8 @@
 
 using namespace furniture_fem;
 
+namespace modal_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 // A slender 8 m beam of the 50 x 30 tube (L / r = 437 about the strong axis), bending in the X-Y
@@ -99,3 +101,5 @@ TEST_CASE("free-free bending frequencies converge to beam theory", "[modal]") {
   check_convergence<ConventionalTimoshenko>(true, 0.01);
   check_convergence<CubicEulerBernoulli>(true, 0.01);
 }
+
+}  // namespace modal_tests

@@ -11,6 +11,8 @@
 using namespace furniture_fem;
 using Catch::Matchers::Contains;
 
+namespace model_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 // The message of the ModelError thrown by f (any other exception escapes and fails the test).
@@ -172,3 +174,5 @@ TEST_CASE("a pair count rounds up when the length decides the element count", "[
   }
   CHECK(m.body_mass(b) == Approx(7850 * 304e-6 * 0.25).epsilon(1e-12));
 }
+
+}  // namespace model_tests

@@ -13,6 +13,8 @@
 
 using namespace furniture_fem;
 
+namespace point_masses_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 // A light three-armed frame (arms of 0.2 m along +x, +y, +z from a hub at `hub`, 10 x 10 x 1 mm tubes
@@ -240,3 +242,5 @@ TEST_CASE("a free rigid body with anisotropic inertia spinning off its principal
   CHECK(c[0] < 2e-5);
   CHECK(c[1] < 1e-6);
 }
+
+}  // namespace point_masses_tests

@@ -16,6 +16,8 @@ using detail::AffineField;
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 
+namespace rigid_affine_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 struct RandomBody {
@@ -376,3 +378,5 @@ TEST_CASE("a rigid body stepped on its affine fields follows the nodal scheme", 
   CHECK(dv <= 1e-9 * vmax);
   CHECK(da <= 1e-7 * amax);
 }
+
+}  // namespace rigid_affine_tests

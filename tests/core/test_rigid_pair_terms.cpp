@@ -9,6 +9,8 @@
 #include <random>
 #include <vector>
 
+namespace rigid_pair_terms_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 using furniture_fem::Mat3;
 using furniture_fem::Vec3;
@@ -114,3 +116,5 @@ TEST_CASE("a rigid group's pair terms: no force under a common rigid motion, k d
   CHECK((g.segment<3>(6) + Fa).norm() <= tol);
   CHECK((g.segment<3>(9) - Mb).norm() <= tol);
 }
+
+}  // namespace rigid_pair_terms_tests

@@ -10,6 +10,8 @@
 
 using namespace furniture_fem;
 
+namespace solvers_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 // Unit lower triangular L with a random pattern: column j has entries in a random subset of the rows
@@ -104,3 +106,5 @@ TEST_CASE("the direct solver solves block SPD systems like a dense LDL^T, across
     K.diagonal().array() += 0.3 * (refresh + 1);
   }
 }
+
+}  // namespace solvers_tests

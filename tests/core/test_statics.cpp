@@ -15,6 +15,8 @@
 
 using namespace furniture_fem;
 
+namespace statics_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 constexpr double pi = std::numbers::pi;
@@ -458,3 +460,5 @@ TEST_CASE("load control past the collapse load stops with a reason in the last c
     REQUIRE_NOTHROW(sim.step());
   }
 }
+
+}  // namespace statics_tests

@@ -16,6 +16,8 @@
 
 using namespace furniture_fem;
 
+namespace structural_damping_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 // The damping ratio of a decaying oscillation from its positive peaks (parabolic interpolation), by the
@@ -191,3 +193,5 @@ TEST_CASE("stiffness_damping: a negative or non-finite value is refused, naming 
                         Catch::Contains("stiffness_damping must be finite and at least 0 s (got " + detail::fmt(c) + ")"));
   }
 }
+
+}  // namespace structural_damping_tests

@@ -10,6 +10,8 @@
 
 using namespace furniture_fem;
 
+namespace text_tests {  // this file's own names (its group compiles files in batches)
+
 TEST_CASE("parse_finite takes a whole finite number and nothing else", "[text]") {
   double x = -7;
   CHECK(text::parse_finite("0.05", x));
@@ -99,3 +101,5 @@ TEST_CASE("one exception hierarchy: input, model, simulation and output errors",
   CHECK(e.line() == 3);
   CHECK(e.field() == "x");
 }
+
+}  // namespace text_tests

@@ -12,6 +12,8 @@
 
 using namespace furniture_fem;
 
+namespace threads_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 // Four flexible bodies of different sizes (so that the largest-first order and the helper's share
@@ -98,3 +100,5 @@ TEST_CASE("a non-finite state found on a helper thread stops the step as on one 
     CHECK_THROWS_AS(sim.step(), SimulationError);
   }
 }
+
+}  // namespace threads_tests

@@ -17,6 +17,8 @@
 
 #include <furniture_fem/excitation/building.hpp>
 
+namespace building_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 using furniture_fem::Record;
@@ -167,3 +169,5 @@ TEST_CASE("building: bad buildings and floors are refused, naming the key, the i
   CHECK_THROWS_WITH(ShearBuilding::uniform(0, 1.0, 0.02), Contains("storeys = 0"));
   CHECK_THROWS_WITH(ShearBuilding::uniform(5, -1.0, 0.02), Contains("first_period = -1"));
 }
+
+}  // namespace building_tests

@@ -16,6 +16,8 @@
 #include <furniture_fem/excitation/spectrum.hpp>
 #include <furniture_fem/excitation/synthetic.hpp>
 
+namespace floor_spectrum_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 using furniture_fem::Record;
@@ -116,3 +118,5 @@ TEST_CASE("building: a floor response spectrum against the building and an oscil
   const auto ground_t1 = furniture_fem::response_spectrum(ground, {1.0}, 0.05).sa[0];
   CHECK(at_t1 > 2 * ground_t1);
 }
+
+}  // namespace floor_spectrum_tests

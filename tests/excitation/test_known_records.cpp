@@ -9,6 +9,8 @@
 
 using namespace furniture_fem;
 
+namespace known_records_tests {  // this file's own names (its group compiles files in batches)
+
 TEST_CASE("a missing record the examples name says where to get it", "[records]") {
   const std::string ns = "/nowhere/jma_kobe_1995_NS_PEER_RSN1106_KJM000.AT2";
   const std::string msg = record_not_found(ns);
@@ -40,3 +42,5 @@ TEST_CASE("FFEM_RECORDS sets the default records folder", "[records]") {
   CHECK(default_records_dir() == "../shared/ground_motions");
   if (before) ::setenv(records_dir_variable, saved.c_str(), 1);
 }
+
+}  // namespace known_records_tests

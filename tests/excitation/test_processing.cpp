@@ -7,6 +7,8 @@
 
 #include <furniture_fem/excitation/excitation.hpp>
 
+namespace processing_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -202,3 +204,5 @@ TEST_CASE("integrate (trapezoid): constant a gives v = a t and d = a t^2 / 2 exa
   CHECK(lin.vel.back() == Approx(1.0 + 1.5).epsilon(1e-12));
   CHECK(lin.disp.front() == -2.0);
 }
+
+}  // namespace processing_tests

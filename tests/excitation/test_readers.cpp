@@ -9,6 +9,8 @@
 
 #include <furniture_fem/excitation/excitation.hpp>
 
+namespace readers_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 std::string tmp_path(const std::string& name) { return std::string(FFEM_TEST_TMP) + "/excitation_" + name; }
@@ -473,3 +475,5 @@ TEST_CASE("a sample that overflows once converted to m/s^2: InputError at its li
   const std::string vp = write_file("overflow_g_values.txt", "1 2\n3 1e308\n");
   require_input_error([&] { (void)furniture_fem::read_columns(vp, g); }, vp, 2, "sample 4");
 }
+
+}  // namespace readers_tests

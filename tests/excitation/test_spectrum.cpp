@@ -7,6 +7,8 @@
 
 #include <furniture_fem/excitation/excitation.hpp>
 
+namespace spectrum_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -131,3 +133,5 @@ TEST_CASE("spectrum: a period too short or too long for the record's dt is refus
   REQUIRE_THROWS_WITH(furniture_fem::response_spectrum(rec, {1e300}), Contains("period 1e+300 s is too long"));
   CHECK_NOTHROW(furniture_fem::response_spectrum(rec, {1e-3, 1e3}));
 }
+
+}  // namespace spectrum_tests

@@ -6,6 +6,8 @@
 
 #include <furniture_fem/excitation/excitation.hpp>
 
+namespace synthetic_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 }
@@ -154,3 +156,5 @@ TEST_CASE("synthetic: a duration or warm-up of more than 1e9 samples is refused 
   p.duration = 1e300;
   REQUIRE_THROWS_WITH(furniture_fem::near_fault_pulse(1.0, 1.0, p), Contains("near_fault_pulse: duration 1e+300 s"));
 }
+
+}  // namespace synthetic_tests

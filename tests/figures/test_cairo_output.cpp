@@ -13,6 +13,8 @@
 #include "png_reader.hpp"
 #include "../support/test_files.hpp"
 
+namespace cairo_output_tests {  // this file's own names (its group compiles files in batches)
+
 namespace fs = std::filesystem;
 using namespace furniture_fem;
 using ffem_test::slurp;
@@ -218,3 +220,5 @@ TEST_CASE("cairo: UTF-8 text is drawn, invalid UTF-8 becomes '?' instead of fail
   CHECK(detail::utf8_or_question_marks("\xED\xA0\x80") == "???");  // a surrogate
   CHECK(detail::utf8_or_question_marks("\xE2\x82\xAC") == "\xE2\x82\xAC");
 }
+
+}  // namespace cairo_output_tests

@@ -10,6 +10,8 @@
 #include "png_reader.hpp"
 #include "../support/test_files.hpp"
 
+namespace plots_tests {  // this file's own names (its group compiles files in batches)
+
 namespace fs = std::filesystem;
 using namespace furniture_fem;
 
@@ -301,3 +303,5 @@ TEST_CASE("Wireframe3D: perspective shrinks far edges, orthographic does not", "
   CHECK_THROWS_AS(w.perspective(true, 0.5), InputError);
   CHECK_THROWS_AS(w.add_segments(edges, std::vector<RGB>(3, colors::black)), InputError);
 }
+
+}  // namespace plots_tests

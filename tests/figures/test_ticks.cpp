@@ -9,6 +9,8 @@
 
 using namespace furniture_fem;
 
+namespace ticks_tests {  // this file's own names (its group compiles files in batches)
+
 TEST_CASE("nice ticks follow the 1-2-5 rule", "[ticks]") {
   CHECK(nice_ticks(0, 9.3) == std::vector<double>{0, 2, 4, 6, 8});
   CHECK(nice_step(9.3) == 2);
@@ -89,3 +91,5 @@ TEST_CASE("palette colours are distinct", "[ticks]") {
     }
   CHECK(palette_color(10) == palette_color(0));
 }
+
+}  // namespace ticks_tests

@@ -11,6 +11,8 @@
 
 using namespace furniture_fem;
 
+namespace block_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 BuildOptions block_options(double mass, std::optional<double> cog_h = std::nullopt) {
@@ -140,3 +142,5 @@ TEST_CASE("the block kind is registered and builds from its parameters", "[furni
   CHECK(model.body_mass(infos[0].body) == Approx(12.0).epsilon(1e-12));
   CHECK(item_kind_from_string("block") == ItemKind::block);
 }
+
+}  // namespace block_tests

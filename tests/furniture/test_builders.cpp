@@ -13,6 +13,8 @@
 
 using namespace furniture_fem;
 
+namespace builders_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 // Half the widest contact width among the elements at each node (what the contact module uses).
@@ -410,3 +412,5 @@ TEST_CASE("member names locate elements for sectional-force output", "[furniture
   CHECK((el.n1 == node || el.n2 == node));
   CHECK(find_member(model, desk.body, "no such member") == -1);
 }
+
+}  // namespace builders_tests

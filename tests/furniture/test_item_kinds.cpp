@@ -7,6 +7,8 @@
 
 using namespace furniture_fem;
 
+namespace item_kinds_tests {  // this file's own names (its group compiles files in batches)
+
 TEST_CASE("the built-in kinds are registered in order with their parameters", "[furniture][kinds]") {
   const ItemKindRegistry registry = builtin_item_kind_registry();
   CHECK(registry.names() == "tall_cabinet, separated_cabinets, side_table, desk, office_chair, bookshelf, locker, table, block");
@@ -62,3 +64,5 @@ TEST_CASE("a registry takes kind types and refuses a name twice", "[furniture][k
   CHECK(built[0].size.z() == Approx(0.45));
   CHECK_THROWS_AS(builtin_item_kind_registry().at(ItemKind("stool")), ModelError);
 }
+
+}  // namespace item_kinds_tests

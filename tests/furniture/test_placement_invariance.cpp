@@ -15,6 +15,8 @@
 
 using namespace furniture_fem;
 
+namespace placement_invariance_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 using Builder = std::function<std::vector<ItemInfo>(Model&, const Placement&, const BuildOptions&)>;
@@ -77,3 +79,5 @@ TEST_CASE("an item's mesh is the same wherever it stands", "[furniture][mesh]") 
       }
     }
 }
+
+}  // namespace placement_invariance_tests

@@ -10,6 +10,8 @@
 #include "furniture_fem/io/csv.hpp"
 #include "../support/test_files.hpp"
 
+namespace csv_tests {  // this file's own names (its group compiles files in batches)
+
 namespace fs = std::filesystem;
 using namespace furniture_fem;
 
@@ -140,3 +142,5 @@ TEST_CASE("CSV columns named by items and partners read back by name", "[csv]") 
   CHECK(t.column("my desk, oak|walls_fx") == std::vector<double>{0.0, 2e-300});
   CHECK(t.column("a \"b\"|pair/upper_fy") == std::vector<double>{0.375, -7.5});
 }
+
+}  // namespace csv_tests

@@ -20,6 +20,8 @@
 #include "furniture_fem/io/vtk.hpp"
 #include "../support/test_files.hpp"
 
+namespace vtk_tests {  // this file's own names (its group compiles files in batches)
+
 namespace fs = std::filesystem;
 using namespace furniture_fem;
 
@@ -398,3 +400,5 @@ TEST_CASE("binary VTU: an empty mesh and a multi-block array decode", "[vtk]") {
   CHECK(b.at("Points").values[3 * 29999 + 2] == -29999 / 7.0);
   CHECK(b.at("offsets").values.back() == 2 * 29999);
 }
+
+}  // namespace vtk_tests

@@ -28,6 +28,8 @@ using namespace furniture_fem;
 using nlohmann::json;
 using Catch::Matchers::Contains;
 
+namespace building_scene_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 std::string scratch(const std::string& name) {
@@ -284,3 +286,5 @@ TEST_CASE("building: a run stopped and resumed writes the uninterrupted run's in
   CHECK(whole.find("ground_dz") != std::string::npos);
   CHECK(bytes_of(dir + "/part/input_motion.csv") == whole);
 }
+
+}  // namespace building_scene_tests

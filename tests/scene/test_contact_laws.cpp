@@ -17,6 +17,8 @@ using nlohmann::json;
 using Catch::Matchers::Contains;
 using ffem_test::input_error;
 
+namespace contact_laws_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 // One side table; `contact` as given.
@@ -190,3 +192,5 @@ TEST_CASE("the contact key table of docs/scene/scene_file.md is the generated on
   const std::string law_row = page.substr(row, page.find('\n', row) - row);
   for (const auto& law : scene_law_infos) CHECK_THAT(law_row, Contains("`" + std::string(law.name) + "`"));
 }
+
+}  // namespace contact_laws_tests

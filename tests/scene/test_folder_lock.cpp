@@ -14,6 +14,8 @@
 #include <string>
 
 using namespace furniture_fem;
+
+namespace folder_lock_tests {  // this file's own names (its group compiles files in batches)
 namespace fs = std::filesystem;
 
 namespace {
@@ -133,3 +135,5 @@ TEST_CASE("the lock file is none of a run's results", "[results_folder][lock]") 
     REQUIRE_THROWS_WITH(check_results_folder(dir, false), Catch::Contains("not empty"));
   }
 }
+
+}  // namespace folder_lock_tests

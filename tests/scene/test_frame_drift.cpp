@@ -15,6 +15,8 @@ using namespace furniture_fem;
 using nlohmann::json;
 using Catch::Matchers::Contains;
 
+namespace frame_drift_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 // scripts/full_vs_rigid.py's `sudden` case: 0.3 s at rest, then a along Y within 1 ms, held 3 s.
@@ -83,3 +85,5 @@ TEST_CASE("integrator.frame_drift_refresh: a full chair that lands on its side c
     CHECK_THAT(message, Contains("integrator.frame_drift_refresh") && Contains(expect));
   }
 }
+
+}  // namespace frame_drift_tests

@@ -12,6 +12,8 @@ using namespace furniture_fem;
 using nlohmann::json;
 using Catch::Matchers::Contains;
 
+namespace item_kinds_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 // A refrigerator, built as a closed locker of its own size.
@@ -133,3 +135,5 @@ TEST_CASE("the item parameter tables of docs/scene/scene_file.md are the generat
   CHECK(item_parameter_tables().find("test_fridge") == std::string::npos);
   CHECK(item_parameter_tables(item_kind_registry()).find("test_fridge") != std::string::npos);
 }
+
+}  // namespace item_kinds_tests

@@ -10,6 +10,8 @@ using namespace furniture_fem;
 using nlohmann::json;
 using Catch::Matchers::Contains;
 
+namespace item_scales_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 json cabinet_scene(const json& params, const std::string& law = "paper") {
@@ -90,3 +92,5 @@ TEST_CASE("a run sees friction_scale: a block held at 0.25 g slides once its fri
   CHECK(slide(1.0) < 1e-4);
   CHECK(slide(0.5) == Approx(0.5 * 0.1 * g * 0.25).epsilon(0.03));  // the onset and the stick spring: ~1 %
 }
+
+}  // namespace item_scales_tests

@@ -20,6 +20,8 @@ using namespace furniture_fem;
 using nlohmann::json;
 using Catch::Matchers::Contains;
 
+namespace points_and_block_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 constexpr double g = 9.80665;
@@ -563,3 +565,5 @@ TEST_CASE("integrator.stiffness_damping: read, written back, damps a full frame'
     CHECK_THAT(message, Contains("integrator.stiffness_damping") && Contains(expect));
   }
 }
+
+}  // namespace points_and_block_tests

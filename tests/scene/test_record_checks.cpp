@@ -24,6 +24,8 @@ using namespace furniture_fem;
 using nlohmann::json;
 using Catch::Matchers::Contains;
 
+namespace record_checks_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 constexpr double g0 = 9.80665;
@@ -398,3 +400,5 @@ TEST_CASE("substitutions that were silent are errors", "[scene][records]") {
     CHECK_THROWS_WITH(validate(s), Contains("ground_motion.lowpass_hz: not applied to a synthetic motion"));
   }
 }
+
+}  // namespace record_checks_tests

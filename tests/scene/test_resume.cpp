@@ -21,6 +21,8 @@
 #include <vector>
 
 using namespace furniture_fem;
+
+namespace resume_tests {  // this file's own names (its group compiles files in batches)
 namespace fs = std::filesystem;
 
 namespace {
@@ -343,3 +345,5 @@ TEST_CASE("a run refuses a results folder another run holds, before it writes th
   REQUIRE_THROWS_WITH(run_scene(spec, opt), Catch::Contains("is in use by process"));
   CHECK(slurp(dir + "/run.json") == before);
 }
+
+}  // namespace resume_tests

@@ -15,6 +15,8 @@ using namespace furniture_fem;
 using nlohmann::json;
 using Catch::Matchers::Contains;
 
+namespace rigid_pairs_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 constexpr double g = 9.80665;
@@ -206,3 +208,5 @@ TEST_CASE("contact.flexible_pairs: read, written back, the full cabinets rest on
   unknown["contact"]["flexible_pairs"] = "joint";
   CHECK_THAT(error_of(unknown), Contains("contact.flexible_pairs") && Contains("explicit") && Contains("implicit"));
 }
+
+}  // namespace rigid_pairs_tests

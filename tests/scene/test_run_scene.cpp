@@ -29,6 +29,8 @@
 
 using namespace furniture_fem;
 using nlohmann::json;
+
+namespace run_scene_tests {  // this file's own names (its group compiles files in batches)
 namespace fs = std::filesystem;
 
 namespace {
@@ -1337,3 +1339,5 @@ TEST_CASE("the energy ledger's verdict: closes within the tolerance, or says by 
   CHECK_THAT(strict.energy.text, Catch::StartsWith("the energy ledger does not close") &&
                                      Catch::Contains("changed most between t = ") && Catch::Contains(strict.energy.term));
 }
+
+}  // namespace run_scene_tests

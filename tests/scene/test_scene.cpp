@@ -15,6 +15,8 @@
 using namespace furniture_fem;
 using nlohmann::json;
 
+namespace scene_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 const std::filesystem::path source_dir = std::filesystem::path(__FILE__).parent_path();
@@ -475,3 +477,5 @@ TEST_CASE("the minimal scene of docs/scene/scene_file.md parses and validates", 
   REQUIRE(items.size() == 3);
   CHECK(items[2].calibration.mass == Approx(35.0));
 }
+
+}  // namespace scene_tests

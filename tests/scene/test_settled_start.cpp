@@ -17,6 +17,8 @@ using namespace furniture_fem;
 using nlohmann::json;
 using Catch::Matchers::Contains;
 
+namespace settled_start_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 // One side table on a still table (a points motion of zero), no files.
@@ -153,3 +155,5 @@ TEST_CASE("a stop request while the items settle ends the run at t = 0, with no 
   CHECK(std::filesystem::exists(out / "summary.json"));
   CHECK_FALSE(std::filesystem::exists(out / "checkpoint.bin"));
 }
+
+}  // namespace settled_start_tests

@@ -17,6 +17,8 @@
 
 using namespace furniture_fem;
 
+namespace support_faces_tests {  // this file's own names (its group compiles files in batches)
+
 TEST_CASE("a rigid cabinet at a perturbed yaw has six support faces whatever the order of its nodes",
           "[contact][support]") {
   for (const double yaw_deg : {-89.1394280922475, 12.0, -90.0, -90.5, 0.3, 44.9}) {
@@ -43,3 +45,5 @@ TEST_CASE("a rigid cabinet at a perturbed yaw has six support faces whatever the
     }
   }
 }
+
+}  // namespace support_faces_tests

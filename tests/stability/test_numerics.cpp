@@ -10,6 +10,8 @@
 
 using namespace stability;
 
+namespace numerics_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 // Configuration 2 at 100 % (pga 8 m/s^2) with the desk and chair markers, every item's penalty
@@ -128,3 +130,5 @@ TEST_CASE("stability: a time step five times larger (5 ms)", "[stability][numeri
     require_trusted(ok, 0.015);
   }
 }
+
+}  // namespace numerics_tests

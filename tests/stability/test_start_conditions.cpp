@@ -16,6 +16,8 @@
 
 using namespace stability;
 
+namespace start_conditions_tests {  // this file's own names (its group compiles files in batches)
+
 TEST_CASE("stability: a chair with casters on a tilted floor", "[stability][start]") {
   const bool full = full_mode();
   const double duration = 3.0, g = 9.80665;
@@ -138,3 +140,5 @@ TEST_CASE("stability: items starting 5 mm into each other", "[stability][start]"
     CHECK(o.diagnosis.find("interpenetrated") != std::string::npos);
   }
 }
+
+}  // namespace start_conditions_tests

@@ -7,6 +7,8 @@
 
 using namespace stability;
 
+namespace strong_motion_tests {  // this file's own names (its group compiles files in batches)
+
 TEST_CASE("stability: 200 % JMA-Kobe-like 3-D input", "[stability][strong_motion]") {
   const bool full = full_mode();
   // Short: configuration 2 (side table, desk, chair: 994 elements) for 3 s, the envelope's rise and
@@ -159,3 +161,5 @@ TEST_CASE("stability: the stiff law at full fidelity under the built-in 3-D moti
     CHECK(sum.max_energy_imbalance < 1.0);
   }
 }
+
+}  // namespace strong_motion_tests

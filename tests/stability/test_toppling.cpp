@@ -7,6 +7,8 @@
 
 using namespace stability;
 
+namespace toppling_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 // The separated cabinets (lower and upper body, stacked) alone on the floor, front towards -X, hit
@@ -110,3 +112,5 @@ TEST_CASE("stability: a tall cabinet falls onto the desk", "[stability][toppling
   // The desk stays upright.
   CHECK(o.item("desk").tilt_deg < 20);
 }
+
+}  // namespace toppling_tests

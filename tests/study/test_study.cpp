@@ -20,6 +20,8 @@ using namespace furniture_fem;
 using nlohmann::json;
 using Catch::Matchers::Contains;
 
+namespace study_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 constexpr double g = 9.80665;
@@ -510,3 +512,5 @@ TEST_CASE("a study's run record keeps a body's final state with final_state.json
   CHECK(o.item_force_peak == b.item_force_peak);
   CHECK(to_json(back) == j);
 }
+
+}  // namespace study_tests

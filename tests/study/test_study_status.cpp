@@ -16,6 +16,8 @@
 using namespace furniture_fem;
 using nlohmann::json;
 
+namespace study_status_tests {  // this file's own names (its group compiles files in batches)
+
 namespace {
 
 // A rigid block at the table's centre, shaken by a synthetic motion of `motion_s` seconds.
@@ -211,3 +213,5 @@ TEST_CASE("a study of a scene without a ground_motion runs the scene's default m
   CHECK(r.status == "completed");
   CHECK(r.t_end == Approx(0.05).margin(1e-12));
 }
+
+}  // namespace study_status_tests

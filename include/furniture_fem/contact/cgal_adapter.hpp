@@ -1,6 +1,8 @@
 #pragma once
-// furniture_fem/contact/cgal_adapter.hpp: everything of the contact module that needs CGAL, and the
-// only place that includes it (CGAL is heavy to compile; the laws and geometry stay light).
+// furniture_fem/contact/cgal_adapter.hpp: everything of the contact module that needs CGAL. This header
+// declares it without CGAL; what calls CGAL is defined in detail/cgal_adapter_impl.hpp, included at the
+// end here (header-only use) or compiled once in furniture_fem::contact_compiled, whose users get
+// FURNITURE_FEM_COMPILED_CONTACT and never parse CGAL (docs/performance.md section 6).
 //
 //  - ElementBox, BroadPhase: candidate element pairs from inflated axis-aligned boxes, body boxes
 //    first, then CGAL::box_intersection_d between two bodies' element boxes (or
@@ -9,20 +11,9 @@
 //  - TriangleMesh, read_triangle_mesh(): OFF, OBJ, STL (ASCII and binary) readers that name the file
 //    and line of what is wrong (InputError);
 //  - MeshObstacle: a rigid triangle mesh in a CGAL AABB tree: closest point to a point, and the
-//    segments (beam elements) within a distance of the mesh.
-// CGAL version differences (AABB_traits in 5.x, AABB_traits_3 from 6.0) are kept here.
-#include <CGAL/version.h>
-#include <CGAL/Simple_cartesian.h>
-#include <CGAL/box_intersection_d.h>
-#include <CGAL/AABB_tree.h>
-#if CGAL_VERSION_NR >= 1060000000
-#include <CGAL/AABB_traits_3.h>
-#include <CGAL/AABB_triangle_primitive_3.h>
-#else
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#endif
-
+//    segments (beam elements) within a distance of the mesh;
+//  - detail::convex_hull_triangles: a point set's convex hull (a rigid body's support points).
+// CGAL version differences (AABB_traits in 5.x, AABB_traits_3 from 6.0) are kept in the definitions.
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
@@ -47,6 +38,15 @@
 #include "contact_geometry.hpp"
 #include "../core/errors.hpp"
 #include "../core/text.hpp"
+
+// FFEM_CONTACT_DETECTION_INLINE: how the definitions in detail/cgal_adapter_impl.hpp (and the convex hull
+// of detail/support_points.hpp) are declared: inline when included by users (header-only), and with
+// external linkage in the one unit that compiles them (FURNITURE_FEM_BUILDING_CONTACT_LIBRARY).
+#ifdef FURNITURE_FEM_BUILDING_CONTACT_LIBRARY
+#define FFEM_CONTACT_DETECTION_INLINE
+#else
+#define FFEM_CONTACT_DETECTION_INLINE inline
+#endif
 
 namespace furniture_fem {
 
@@ -83,24 +83,6 @@ struct ElementBox {
   }
 };
 
-namespace detail {
-namespace cgal_box = CGAL::Box_intersection_d;
-
-// CGAL's box with an explicit id: the position of the element box in the caller's list, so the
-// ids are unique and stable (CGAL's own ID_EXPLICIT uses a global counter).
-class CgalElementBox : public cgal_box::Box_d<double, 3, cgal_box::ID_NONE> {
- public:
-  using Base = cgal_box::Box_d<double, 3, cgal_box::ID_NONE>;
-  using ID = std::size_t;
-  CgalElementBox(const ElementBox& b, std::size_t index)
-      : Base(CGAL::Bbox_3(b.lo.x(), b.lo.y(), b.lo.z(), b.hi.x(), b.hi.y(), b.hi.z())), index_(index) {}
-  std::size_t id() const { return index_; }
-
- private:
-  std::size_t index_;
-};
-}  // namespace detail
-
 // Candidate element pairs for the narrow phase. Bodies' boxes (the union of their element boxes)
 // are tested first; only for two bodies whose boxes overlap are element boxes tested, and only the
 // elements that reach into the other body's box, by CGAL::box_intersection_d (bipartite). Pairs
@@ -121,41 +103,7 @@ class BroadPhase {
 
   // The same, into a caller's vector (cleared first); with the broad phase's own buffers it is
   // reused from call to call, so a time loop allocates little beyond CGAL's internal work.
-  void pairs(std::span<const ElementBox> boxes, std::vector<std::pair<int, int>>& out) {
-    keys_.clear();
-    group_by_body(boxes);
-    body_pairs_tested_ = 0;
-    const std::size_t nb = body_ids_.size();
-    for (std::size_t a = 0; a < nb; ++a) {
-      for (std::size_t b = a + 1; b < nb; ++b) {
-        if (!body_box_[a].overlaps(body_box_[b])) continue;
-        ++body_pairs_tested_;
-        // Only elements that reach into the other body's box can meet it.
-        collect(boxes, a, body_box_[b], set_a_);
-        collect(boxes, b, body_box_[a], set_b_);
-        if (set_a_.empty() || set_b_.empty()) continue;
-        CGAL::box_intersection_d(set_a_.begin(), set_a_.end(), set_b_.begin(), set_b_.end(),
-                                 [&](const detail::CgalElementBox& x, const detail::CgalElementBox& y) {
-                                   add(boxes[x.id()].element, boxes[y.id()].element);
-                                 },
-                                 cutoff);
-      }
-      if (same_body_pairs) {
-        set_a_.clear();
-        for (std::size_t i : members_[a]) set_a_.emplace_back(boxes[i], i);
-        CGAL::box_self_intersection_d(set_a_.begin(), set_a_.end(),
-                                      [&](const detail::CgalElementBox& x, const detail::CgalElementBox& y) {
-                                        if (!boxes[x.id()].shares_node(boxes[y.id()]))
-                                          add(boxes[x.id()].element, boxes[y.id()].element);
-                                      },
-                                      cutoff);
-      }
-    }
-    // Canonical order; each pair is packed into one 64-bit key so the sort compares integers.
-    std::sort(keys_.begin(), keys_.end());
-    out.resize(keys_.size());
-    for (std::size_t k = 0; k < keys_.size(); ++k) out[k] = {unpack(keys_[k] >> 32), unpack(keys_[k] & 0xffffffffu)};
-  }
+  void pairs(std::span<const ElementBox> boxes, std::vector<std::pair<int, int>>& out);
 
   // Body pairs whose boxes overlapped in the last call (for statistics and tests).
   int body_pairs_tested() const { return body_pairs_tested_; }
@@ -192,20 +140,32 @@ class BroadPhase {
     }
   }
 
+  // The boxes of `body` that reach into `region` (their indices in `boxes`).
   void collect(std::span<const ElementBox> boxes, std::size_t body, const ElementBox& region,
-               std::vector<detail::CgalElementBox>& set) const {
+               std::vector<std::size_t>& set) const {
     set.clear();
     for (std::size_t i : members_[body])
-      if (boxes[i].overlaps(region)) set.emplace_back(boxes[i], i);
+      if (boxes[i].overlaps(region)) set.push_back(i);
   }
 
   std::vector<int> body_ids_;
   std::vector<std::vector<std::size_t>> members_;
   std::vector<ElementBox> body_box_;
-  std::vector<detail::CgalElementBox> set_a_, set_b_;
+  std::vector<std::size_t> set_a_, set_b_;  // the two sides' boxes (indices) of a body pair
   std::vector<std::uint64_t> keys_;
   int body_pairs_tested_ = 0;
 };
+
+// ---------------------------------------------------------------------------------------------
+// Convex hull.
+
+namespace detail {
+// The triangles of the convex hull of the points P[i], i in `points` (CGAL::convex_hull_3), each as three
+// indices into P in CGAL's order; none for fewer than four points or a flat set (fewer than four
+// faces). CGAL's listing depends on the points' order and on the heap: callers put it in a canonical
+// form (detail/support_points.hpp).
+std::vector<std::array<int, 3>> convex_hull_triangles(const std::vector<Vec3>& P, const std::vector<int>& points);
+}  // namespace detail
 
 // ---------------------------------------------------------------------------------------------
 // Triangle meshes from files.
@@ -489,28 +449,7 @@ inline std::string coordinate_text(double x) {
   return buf;
 }
 
-struct CgalMeshTree {
-  using Kernel = CGAL::Simple_cartesian<double>;
-  using Triangle = Kernel::Triangle_3;
-  using Point = Kernel::Point_3;
-  using Iterator = std::vector<Triangle>::const_iterator;
-#if CGAL_VERSION_NR >= 1060000000
-  using Primitive = CGAL::AABB_triangle_primitive_3<Kernel, Iterator>;
-  using Traits = CGAL::AABB_traits_3<Kernel, Primitive>;
-#else
-  using Primitive = CGAL::AABB_triangle_primitive<Kernel, Iterator>;
-  using Traits = CGAL::AABB_traits<Kernel, Primitive>;
-#endif
-  using Tree = CGAL::AABB_tree<Traits>;
-
-  std::vector<Triangle> triangles;  // the tree points into this vector: never resized after build
-  std::vector<int> source;          // index of each kept triangle in the input mesh
-  Tree tree;
-  CGAL::Bbox_3 box;                 // of the whole mesh
-
-  static Point point(const Vec3& p) { return Point(p.x(), p.y(), p.z()); }
-  static Vec3 vec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
-};
+struct CgalMeshTree;  // the AABB tree and its triangles (detail/cgal_adapter_impl.hpp)
 }  // namespace detail
 
 struct MeshClosestPoint {
@@ -542,62 +481,20 @@ class MeshObstacle {
   // docs/fuzzing.md). Scenes bound obstacles tighter (10 km of the table's centre).
   static constexpr double max_coordinate = 1e6;
 
-  explicit MeshObstacle(TriangleMesh mesh, std::string name = "mesh") : name_(std::move(name)) {
-    auto t = std::make_shared<detail::CgalMeshTree>();
-    for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
-      const auto& tri = mesh.triangles[k];
-      for (int v : tri)
-        if (v < 0 || v >= static_cast<int>(mesh.vertices.size()))
-          throw ModelError("mesh '" + name_ + "': triangle " + std::to_string(k) + " refers to vertex " +
-                           std::to_string(v) + " of " + std::to_string(mesh.vertices.size()));
-      for (int v : tri)
-        if (!(mesh.vertices[v].cwiseAbs().maxCoeff() <= max_coordinate)) {
-          const Vec3& p = mesh.vertices[v];
-          throw ModelError("mesh '" + name_ + "': triangle " + std::to_string(k) + ", vertex " + std::to_string(v) +
-                           " at (" + detail::coordinate_text(p.x()) + ", " + detail::coordinate_text(p.y()) + ", " +
-                           detail::coordinate_text(p.z()) + ") lies farther than 1e6 m from the origin on an axis");
-        }
-      const Vec3 &a = mesh.vertices[tri[0]], &b = mesh.vertices[tri[1]], &c = mesh.vertices[tri[2]];
-      if ((b - a).cross(c - a).squaredNorm() == 0) continue;
-      t->triangles.emplace_back(t->point(a), t->point(b), t->point(c));
-      t->source.push_back(static_cast<int>(k));
-    }
-    if (t->triangles.empty()) throw ModelError("mesh '" + name_ + "': no triangle of non-zero area");
-    t->tree.rebuild(t->triangles.begin(), t->triangles.end());
-    t->tree.accelerate_distance_queries();
-    t->box = t->tree.bbox();
-    mesh_ = std::move(mesh);
-    tree_ = std::move(t);
-  }
+  explicit MeshObstacle(TriangleMesh mesh, std::string name = "mesh");
 
   static MeshObstacle from_file(const std::string& path) { return MeshObstacle(read_triangle_mesh(path), path); }
 
   // The point of the mesh nearest to Q.
   Vec3 closest_point(const Vec3& p_WQ) const { return closest(p_WQ).p_WM; }
 
-  MeshClosestPoint closest(const Vec3& p_WQ) const {
-    const auto pp = tree_->tree.closest_point_and_primitive(detail::CgalMeshTree::point(p_WQ));
-    MeshClosestPoint c;
-    c.p_WM = detail::CgalMeshTree::vec(pp.first);
-    c.distance = (p_WQ - c.p_WM).norm();
-    const auto k = static_cast<std::size_t>(pp.second - tree_->triangles.cbegin());
-    c.triangle = tree_->source[k];
-    const auto& tri = mesh_.triangles[c.triangle];
-    c.n_W = (mesh_.vertices[tri[1]] - mesh_.vertices[tri[0]]).cross(mesh_.vertices[tri[2]] - mesh_.vertices[tri[0]]).normalized();
-    return c;
-  }
+  MeshClosestPoint closest(const Vec3& p_WQ) const;
 
   // The point of the mesh nearest to Q if one lies within distance d of Q; nothing otherwise. Cheap for
   // a point far from the mesh: the box of half-width d around Q is tested against the mesh's box, then
   // against the tree's triangles (a triangle within d of Q meets that box), before any closest-point
   // search (whose cost grows with the distance: a far query visits most of the tree).
-  std::optional<MeshClosestPoint> closest_within(const Vec3& p_WQ, double d) const {
-    const CGAL::Bbox_3 box(p_WQ.x() - d, p_WQ.y() - d, p_WQ.z() - d, p_WQ.x() + d, p_WQ.y() + d, p_WQ.z() + d);
-    if (!CGAL::do_overlap(box, tree_->box) || !tree_->tree.do_intersect(box)) return std::nullopt;
-    MeshClosestPoint c = closest(p_WQ);
-    if (!(c.distance <= d)) return std::nullopt;
-    return c;
-  }
+  std::optional<MeshClosestPoint> closest_within(const Vec3& p_WQ, double d) const;
 
   // The segments within distance d of the mesh (a capsule of radius d touches it), each with its
   // closest triangle and closest points: one contact per segment, as the paper has one per element
@@ -608,36 +505,11 @@ class MeshObstacle {
     segments_within(segments, d, out);
     return out;
   }
-  void segments_within(std::span<const MeshQuerySegment> segments, double d, std::vector<SegmentMeshContact>& out) const {
-    out.clear();
-    std::vector<detail::CgalMeshTree::Primitive::Id> hits;
-    for (std::size_t i = 0; i < segments.size(); ++i) {
-      const Vec3 lo = segments[i].p_W0.cwiseMin(segments[i].p_W1) - Vec3::Constant(d);
-      const Vec3 hi = segments[i].p_W0.cwiseMax(segments[i].p_W1) + Vec3::Constant(d);
-      hits.clear();
-      tree_->tree.all_intersected_primitives(CGAL::Bbox_3(lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z()),
-                                             std::back_inserter(hits));
-      SegmentMeshContact best;
-      for (const auto& id : hits) {
-        const auto& tri = *id;
-        const auto c = closest_points_segment_triangle(segments[i].p_W0, segments[i].p_W1, detail::CgalMeshTree::vec(tri[0]),
-                                                       detail::CgalMeshTree::vec(tri[1]), detail::CgalMeshTree::vec(tri[2]));
-        const int source = tree_->source[static_cast<std::size_t>(id - tree_->triangles.cbegin())];
-        // Ties (a segment over a shared edge) go to the lower triangle index, for determinism.
-        if (c.distance <= d && (best.segment < 0 || c.distance < best.closest.distance ||
-                                (c.distance == best.closest.distance && source < best.triangle))) {
-          best.segment = static_cast<int>(i);
-          best.triangle = source;
-          best.closest = c;
-        }
-      }
-      if (best.segment >= 0) out.push_back(best);
-    }
-  }
+  void segments_within(std::span<const MeshQuerySegment> segments, double d, std::vector<SegmentMeshContact>& out) const;
 
   const TriangleMesh& mesh() const { return mesh_; }
   const std::string& name() const { return name_; }
-  std::size_t num_triangles() const { return tree_->triangles.size(); }
+  std::size_t num_triangles() const;
 
  private:
   std::string name_;
@@ -646,3 +518,15 @@ class MeshObstacle {
 };
 
 }  // namespace furniture_fem
+
+// The definitions that call CGAL: here when used header-only; the compiled contact library's users
+// (FURNITURE_FEM_COMPILED_CONTACT) link them instead.
+#if !defined(FURNITURE_FEM_COMPILED_CONTACT) || defined(FURNITURE_FEM_BUILDING_CONTACT_LIBRARY)
+#ifdef FURNITURE_FEM_CONTACT_INTERNAL  // included from the module's own internals: leave it defined
+#include "detail/cgal_adapter_impl.hpp"
+#else
+#define FURNITURE_FEM_CONTACT_INTERNAL
+#include "detail/cgal_adapter_impl.hpp"
+#undef FURNITURE_FEM_CONTACT_INTERNAL
+#endif
+#endif

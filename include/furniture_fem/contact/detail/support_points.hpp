@@ -10,10 +10,6 @@
 #ifndef FURNITURE_FEM_CONTACT_INTERNAL
 #error "furniture_fem/contact/detail/support_points.hpp is internal: include <furniture_fem/contact/room_contact.hpp>"
 #endif
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Surface_mesh.h>
-#include <CGAL/convex_hull_3.h>
-
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -23,6 +19,7 @@
 #include <vector>
 
 #include "../../core/model.hpp"
+#include "../cgal_adapter.hpp"
 
 namespace furniture_fem::detail {
 
@@ -53,9 +50,6 @@ struct SupportGeometry {
 };
 
 namespace support {
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
-
 using Points = std::vector<Vec3>;  // positions, by the index the geometry names them with
 
 inline Vec3 unit_normal(const Points& P, const std::array<int, 3>& t) {
@@ -188,31 +182,16 @@ inline void set_shares(const Points& P, const std::vector<int>& points, const st
 
 // The hull of points P[i], i in `points` (CGAL::convex_hull_3); owner[i]: the node point i belongs to.
 inline SupportGeometry hull_geometry(const support::Points& P, const std::vector<int>& points, const std::vector<int>& owner) {
-  using support::Point;
   SupportGeometry g;
-  std::vector<Point> cgal_points;
-  for (int i : points) cgal_points.emplace_back(P[i].x(), P[i].y(), P[i].z());
-  CGAL::Surface_mesh<Point> hull;
-  if (points.size() >= 4) CGAL::convex_hull_3(cgal_points.begin(), cgal_points.end(), hull);
-  if (hull.number_of_faces() < 4) {  // flat or too few points: no hull to reduce to
-    g.vertices = points;
-    std::sort(g.vertices.begin(), g.vertices.end());
-    return g;
-  }
-  // Hull vertices back to points: CGAL copies the points exactly.
-  const auto index_of = [&](const Point& p) {
-    return points[static_cast<std::size_t>(std::find(cgal_points.begin(), cgal_points.end(), p) - cgal_points.begin())];
-  };
   // CGAL's listing of the hull depends on the order of the points and on where its data lie in memory
   // (a process's heap layout), and so does the triangulation of a flat face. Taken as listed, the
   // faces' frames (hence their normals, to round-off) and the order of their vertices changed from
   // one process to another, and a chaotic run with them. So each face is put in a canonical form.
-  std::vector<std::array<int, 3>> triangles;
-  for (auto f : hull.faces()) {
-    std::array<int, 3> tri{};
-    int k = 0;
-    for (auto v : CGAL::vertices_around_face(hull.halfedge(f), hull)) tri[k++] = index_of(hull.point(v));
-    triangles.push_back(tri);
+  std::vector<std::array<int, 3>> triangles = convex_hull_triangles(P, points);
+  if (triangles.empty()) {  // flat or too few points: no hull to reduce to
+    g.vertices = points;
+    std::sort(g.vertices.begin(), g.vertices.end());
+    return g;
   }
   std::vector<std::pair<Vec3, double>> planes;
   g.faces = support::merge_into_faces(P, std::move(triangles), planes);

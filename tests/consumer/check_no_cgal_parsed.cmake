@@ -1,0 +1,26 @@
+# A program linked to furniture_fem::contact_compiled builds its own room (RoomContact) without parsing
+# a CGAL header: the contact module's calls into CGAL are declarations there (contact/cgal_adapter.hpp)
+# and compiled once in the library. Reads the compiler's dependency file of each object (<object>.d,
+# written by GCC and clang under CMake's Makefile and Ninja generators): no path in it may be a CGAL
+# header. -DOBJECTS=<the program's object files>
+string(REPLACE "," ";" objects "${OBJECTS}")
+set(problems "")
+foreach(object IN LISTS objects)
+  if(NOT EXISTS "${object}.d")
+    list(APPEND problems "no dependency file ${object}.d")
+    continue()
+  endif()
+  file(STRINGS "${object}.d" cgal REGEX "/CGAL/")
+  list(LENGTH cgal n)
+  if(n GREATER 0)
+    list(GET cgal 0 first)
+    string(STRIP "${first}" first)
+    list(APPEND problems "${object}: ${n} CGAL headers parsed, e.g. ${first}")
+  endif()
+endforeach()
+if(problems)
+  list(JOIN problems "; " text)
+  message(FATAL_ERROR "${text}")
+endif()
+list(LENGTH objects n_objects)
+message(STATUS "${n_objects} objects, no CGAL header parsed")
