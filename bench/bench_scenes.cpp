@@ -10,6 +10,7 @@
 #include <benchmark/benchmark.h>
 
 #include <chrono>
+#include <cmath>
 
 #include <furniture_fem/scene/scene_runner.hpp>
 
@@ -133,5 +134,46 @@ BENCHMARK(BM_SeparateScenes)
     ->Args({1, 0})->Args({8, 0})->Args({8, 1})
     ->Iterations(200)
     ->Unit(benchmark::kMillisecond);
+
+// Setting up a room of n rigid items (blocks of 50 kg on a 1 m grid, rigid pairs by their hulls): the
+// scene's checks (validate) and the simulation's construction (model, contact, hulls, hull pairs), what
+// a run does before its first step. Counter: ms per item, flat when the set-up is linear in the items
+// (issue 51, item 4):
+//   ./build/bench/bench_scenes --benchmark_filter=RoomSetup
+SceneSpec room_of_blocks(int n) {
+  SceneSpec s = synthetic(configuration(3));
+  const int side = static_cast<int>(std::ceil(std::sqrt(double(n))));
+  s.items.clear();
+  s.obstacles.clear();
+  s.table.size_x = s.table.size_y = side + 2.0;
+  s.walls = default_walls(s.table);
+  s.contact.rigid_pairs = RigidPairContact::hulls;
+  for (int k = 0; k < n; ++k) {
+    ItemSpec it;
+    it.kind = ItemKind::block;
+    it.name = "block_" + std::to_string(k);
+    it.fidelity = Fidelity::rigid;
+    it.x = (k / side) - 0.5 * (side - 1);
+    it.y = (k % side) - 0.5 * (side - 1);
+    it.params.mass_kg = 50.0;
+    s.items.push_back(it);
+  }
+  return s;
+}
+
+void BM_RoomSetup(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const SceneSpec spec = room_of_blocks(n);
+  double seconds = 0;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    validate(spec);
+    SceneSimulation<PaperLaw, DirectLdltSolver> scene(spec);
+    benchmark::DoNotOptimize(scene.sim.get());
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  state.counters["ms_per_item"] = 1e3 * seconds / (double(n) * double(state.iterations()));
+}
+BENCHMARK(BM_RoomSetup)->ArgName("items")->Arg(100)->Arg(316)->Arg(1000)->Arg(3162)->Arg(10000)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace

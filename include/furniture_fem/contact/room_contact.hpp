@@ -149,10 +149,13 @@ class RoomContact {
   // only the vertices of its nodes' convex hull are tested against the floor and walls, those of the
   // face turned towards a plane each with the penalty of its share of that face's nodes
   // (docs/contact/contact.md, "Rigid bodies"). rigid = false: every node again.
-  void set_rigid(const Model& model, int body, bool rigid = true) {
+  void set_rigid(const Model& model, int body, bool rigid = true) { set_rigid(model, std::vector<int>{body}, rigid); }
+  // Several bodies at once: the room's geometry (surface points, plane nodes, hull pairs) is made again
+  // once, not once per body (a room of n items set up in n^2 or worse).
+  void set_rigid(const Model& model, const std::vector<int>& bodies, bool rigid = true) {
     if (support_.empty()) return;  // default-constructed: no bodies, nothing to test
-    rigid_.at(body) = rigid;
-    set_centre_line_geometry(model, body);
+    for (int body : bodies) rigid_.at(body) = rigid;
+    for (int body : bodies) set_centre_line_geometry(model, body);
     if (surface_on_) rebuild_surface_points(model);
     select_plane_nodes();
     update_hull_pairs(model);

@@ -281,21 +281,9 @@ class Simulation {
   // rotation, the residual reduced from the nodal one). The contact is told (it may reduce the body's
   // geometry). Call before the first step. "Model only what a scene needs": an item whose internal
   // forces nobody asked for.
-  void set_rigid(int body, bool rigid = true) {
-    if (started_) throw ModelError("set_rigid: call before the first step");
-    if (body < 0 || body >= model_.num_bodies()) throw ModelError("set_rigid: unknown body " + std::to_string(body));
-    if (rigid)
-      for (int n : model_.body(body).nodes)
-        if (model_.node(n).fixed)
-          throw ModelError("set_rigid: body '" + model_.body(body).name + "' has supported node " + std::to_string(n) +
-                           "; a rigid body must be free");
-    systems_[body].rigid = rigid;
-    // Forces a static solve may have left: a rigid body's stay zero (evaluate_body no longer clears them).
-    if (rigid)
-      for (int n : model_.body(body).nodes) fint_.segment<6>(6 * n).setZero();
-    // The contact may then test a reduced geometry of the body (RoomContact: its hull's nodes).
-    if constexpr (requires { contact_.set_rigid(model_, body, rigid); }) contact_.set_rigid(model_, body, rigid);
-  }
+  void set_rigid(int body, bool rigid = true) { set_rigid(std::vector<int>{body}, rigid); }
+  // Several bodies at once (the contact's geometry is made again once: a room of many items).
+  void set_rigid(const std::vector<int>& bodies, bool rigid = true);
   bool is_rigid(int body) const { return systems_.at(body).rigid; }
   // Whether a rigid body is stepped on its fields (SimulationOptions::rigid_fields; decided at the
   // first step: a body with a point inertia, a nodal load or a spring is stepped node by node).

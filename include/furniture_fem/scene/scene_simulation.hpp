@@ -332,12 +332,9 @@ struct SceneSimulation {
     sim = std::make_unique<Sim>(*model, integrator, so, std::move(contact));
     const TableMotion* m = &motion;
     sim->set_table_acceleration([m](double t) { return m->at(t); });
-    for (size_t i = 0; i < items.size(); ++i) {
-      if (item_is_rigid(spec, items[i])) {
-        sim->set_rigid(items[i].body);
-        rigid_bodies.push_back(items[i].body);
-      }
-    }
+    for (size_t i = 0; i < items.size(); ++i)
+      if (item_is_rigid(spec, items[i])) rigid_bodies.push_back(items[i].body);
+    sim->set_rigid(rigid_bodies);
   }
 };
 

@@ -174,21 +174,46 @@ inline void RoomContact::update_hull_pairs(const Model& model) {
       return model.node(n).X + arm;
     };
   };
-  for (int a = 0; a < static_cast<int>(nb); ++a)
-    for (int b = a + 1; b < static_cast<int>(nb); ++b) {
-      if (!has_hull(a) || !has_hull(b)) continue;
-      // Overlapping hulls at rest (deeper than the contact distance allows): nested, element pairs.
-      const bool nested =
-          detail::hull_separation(hull_of(a), rest(a), hull_of(b), rest(b), hull_distance(a, b)) < -nested_overlap;
-      hull_pair_[a * nb + b] = hull_pair_[b * nb + a] = !nested;
+  // Every two bodies with hulls meet by them, unless their hulls overlap at rest (nested: element pairs).
+  // Only bodies whose rest boxes, each grown by its half width, overlap can: they are found by sweeping
+  // the boxes along x (sorted by their lower x), so a room of n items is set up in about n log n, not n^2.
+  std::vector<int> hull_bodies;
+  std::vector<Vec3> lo(nb), hi(nb);
+  for (int b = 0; b < static_cast<int>(nb); ++b) {
+    if (!has_hull(b)) continue;
+    hull_bodies.push_back(b);
+    lo[b] = Vec3::Constant(std::numeric_limits<double>::infinity());
+    hi[b] = -lo[b];
+    for (int v : hull_of(b).vertices) {
+      const Vec3 x = rest(b)(v);
+      lo[b] = lo[b].cwiseMin(x), hi[b] = hi[b].cwiseMax(x);
     }
+    lo[b].array() -= hull_half_width_[b];
+    hi[b].array() += hull_half_width_[b];
+  }
+  for (int a : hull_bodies)
+    for (int b : hull_bodies)
+      if (a != b) hull_pair_[a * nb + b] = 1;
+  std::vector<int> by_x = hull_bodies;
+  std::sort(by_x.begin(), by_x.end(), [&](int a, int b) { return lo[a].x() != lo[b].x() ? lo[a].x() < lo[b].x() : a < b; });
+  std::vector<int> nested_partners(nb, 0);
+  bool any_nested = false;
+  for (std::size_t i = 0; i < by_x.size(); ++i)
+    for (std::size_t j = i + 1; j < by_x.size() && lo[by_x[j]].x() <= hi[by_x[i]].x(); ++j) {
+      const int a = std::min(by_x[i], by_x[j]), b = std::max(by_x[i], by_x[j]);
+      if ((lo[a].array() > hi[b].array()).any() || (lo[b].array() > hi[a].array()).any()) continue;
+      // Overlapping hulls at rest (deeper than the contact distance allows): nested, element pairs.
+      if (detail::hull_separation(hull_of(a), rest(a), hull_of(b), rest(b), hull_distance(a, b)) < -nested_overlap) {
+        hull_pair_[a * nb + b] = hull_pair_[b * nb + a] = 0;
+        ++nested_partners[a], ++nested_partners[b];
+        any_nested = true;
+      }
+    }
+  // A body is in a hull pair when some other hull body is not nested with it; element pairs are left
+  // when a body has no hull or some pair is nested.
   hull_body_.assign(nb, 0);
-  for (std::size_t a = 0; a < nb; ++a)
-    for (std::size_t b = 0; b < nb; ++b) hull_body_[a] = hull_body_[a] || hull_pair_[a * nb + b];
-  // Element pairs are left only if some pair of bodies does not meet by its hulls.
-  any_element_pairs_ = false;
-  for (std::size_t a = 0; a < nb; ++a)
-    for (std::size_t b = a + 1; b < nb; ++b) any_element_pairs_ = any_element_pairs_ || !hull_pair_[a * nb + b];
+  for (int b : hull_bodies) hull_body_[b] = nested_partners[b] < static_cast<int>(hull_bodies.size()) - 1;
+  any_element_pairs_ = any_nested || (nb > 1 && hull_bodies.size() < nb);
 }
 
 inline long long RoomContact::hull_key(detail::HullPointKind kind, long long p, long long q, long long r) {

@@ -210,12 +210,25 @@ inline SupportGeometry hull_geometry(const support::Points& P, const std::vector
   return g;
 }
 
-// The hull of a body's nodes at their initial positions: contact at the members' centre lines.
+// The hull of a body's nodes at their initial positions: contact at the members' centre lines. The
+// nodes are numbered by their rank among the body's node ids (not by the ids, which would size the
+// positions by the whole model and set up a room of n items in n^2), and the ids put back after: ranks
+// keep the ids' order, so the hull's canonical form is the same to the bit.
 inline SupportGeometry support_geometry(const Model& model, const std::vector<int>& nodes) {
-  support::Points P(static_cast<std::size_t>(model.num_nodes()));
-  std::vector<int> owner(P.size());
-  for (int n : nodes) P[n] = model.node(n).X, owner[n] = n;
-  return hull_geometry(P, nodes, owner);
+  std::vector<int> ids = nodes;
+  std::sort(ids.begin(), ids.end());
+  const auto rank = [&](int n) { return static_cast<int>(std::lower_bound(ids.begin(), ids.end(), n) - ids.begin()); };
+  support::Points P(ids.size());
+  std::vector<int> owner(ids.size()), points;
+  for (std::size_t k = 0; k < ids.size(); ++k) P[k] = model.node(ids[k]).X, owner[k] = static_cast<int>(k);
+  for (int n : nodes) points.push_back(rank(n));
+  SupportGeometry g = hull_geometry(P, points, owner);
+  for (int& i : g.vertices) i = ids[i];
+  for (auto& f : g.faces) {
+    for (int& i : f.vertices) i = ids[i];
+    for (int& i : f.frame) i = ids[i];
+  }
+  return g;
 }
 
 // A point of a body's surface geometry: its node, and its offset from the node in the node's initial

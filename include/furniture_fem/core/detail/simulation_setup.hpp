@@ -16,6 +16,31 @@ inline int Simulation<Element, Integrator, LinearSolver, Contact>::check_node(in
 }
 
 template <class Element, class Integrator, class LinearSolver, class Contact>
+inline void Simulation<Element, Integrator, LinearSolver, Contact>::set_rigid(const std::vector<int>& bodies, bool rigid) {
+  if (started_) throw ModelError("set_rigid: call before the first step");
+  for (int body : bodies) {
+    if (body < 0 || body >= model_.num_bodies()) throw ModelError("set_rigid: unknown body " + std::to_string(body));
+    if (rigid)
+      for (int n : model_.body(body).nodes)
+        if (model_.node(n).fixed)
+          throw ModelError("set_rigid: body '" + model_.body(body).name + "' has supported node " +
+                           std::to_string(n) + "; a rigid body must be free");
+  }
+  for (int body : bodies) {
+    systems_[body].rigid = rigid;
+    // Forces a static solve may have left: a rigid body's stay zero (evaluate_body no longer clears them).
+    if (rigid)
+      for (int n : model_.body(body).nodes) fint_.segment<6>(6 * n).setZero();
+  }
+  // The contact may then test a reduced geometry of the bodies (RoomContact: their hulls' nodes).
+  if constexpr (requires { contact_.set_rigid(model_, bodies, rigid); }) {
+    contact_.set_rigid(model_, bodies, rigid);
+  } else if constexpr (requires { contact_.set_rigid(model_, bodies[0], rigid); }) {
+    for (int body : bodies) contact_.set_rigid(model_, body, rigid);
+  }
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
 inline void Simulation<Element, Integrator, LinearSolver, Contact>::setup() {
   const int nn = model_.num_nodes(), ne = model_.num_elements();
   x_.resize(nn);
