@@ -101,8 +101,10 @@ class BroadPhase {
     return out;
   }
 
-  // The same, into a caller's vector (cleared first); with the broad phase's own buffers it is
-  // reused from call to call, so a time loop allocates little beyond CGAL's internal work.
+  // The same, into a caller's vector (cleared first). The broad phase's own buffers (body boxes, the
+  // two sides' indices, the pair keys) are reused from call to call; CGAL's copies of a body pair's
+  // boxes are made per call (CGAL reorders them, and they cannot be members without CGAL here), once
+  // per re-run of the broad phase, not per step.
   void pairs(std::span<const ElementBox> boxes, std::vector<std::pair<int, int>>& out);
 
   // Body pairs whose boxes overlapped in the last call (for statistics and tests).
