@@ -11,6 +11,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <sys/resource.h>
 
 #include <furniture_fem/scene/scene_runner.hpp>
 
@@ -137,8 +138,9 @@ BENCHMARK(BM_SeparateScenes)
 
 // Setting up a room of n rigid items (blocks of 50 kg on a 1 m grid, rigid pairs by their hulls): the
 // scene's checks (validate) and the simulation's construction (model, contact, hulls, hull pairs), what
-// a run does before its first step. Counter: ms per item, flat when the set-up is linear in the items
-// (issue 51, item 4):
+// a run does before its first step. Counters: ms per item, flat when the set-up is linear in the items
+// (issue 51, item 4), and the process's peak resident memory so far (getrusage; the sizes run in
+// increasing order, so each row's figure is its own set-up's peak or close to it):
 //   ./build/bench/bench_scenes --benchmark_filter=RoomSetup
 SceneSpec room_of_blocks(int n) {
   SceneSpec s = synthetic(configuration(3));
@@ -173,6 +175,9 @@ void BM_RoomSetup(benchmark::State& state) {
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   state.counters["ms_per_item"] = 1e3 * seconds / (double(n) * double(state.iterations()));
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  state.counters["peak_rss_MB"] = double(usage.ru_maxrss) / 1024.0;  // Linux: ru_maxrss in kB
 }
 BENCHMARK(BM_RoomSetup)->ArgName("items")->Arg(100)->Arg(316)->Arg(1000)->Arg(3162)->Arg(10000)->Iterations(1)->Unit(benchmark::kMillisecond);
 

@@ -264,7 +264,8 @@ class Simulation {
     ledger_ = {};
     timings_ = {};
     long made = 0;  // the factorisations count from here
-    for (const auto& solver : solvers_) made += solver->factorizations();
+    for (const auto& solver : solvers_)
+      if (solver) made += solver->factorizations();
     factorizations_offset_ = -made;
     started_ = false;
     for (auto& bs : systems_) {
@@ -326,6 +327,7 @@ class Simulation {
   // The body's static tangent stiffness at the current configuration (dense; for modal analysis of
   // small models), and the lumped mass diagonal, in the body's local DOF order (see body_nodes).
   Eigen::MatrixXd stiffness_matrix(int body) {
+    prepare_matrix(body);
     {
       const StaticScope statics(*this, StaticScope::keep_dynamics);
       evaluate_body(body, true);
@@ -496,7 +498,8 @@ class Simulation {
   }
   long factorizations() const {
     long f = factorizations_offset_;
-    for (const auto& s : solvers_) f += s->factorizations();
+    for (const auto& s : solvers_)
+      if (s) f += s->factorizations();
     return f;
   }
   // The factor-reuse error: the largest change of a node's contact term, relative to the term, that a
@@ -619,6 +622,11 @@ class Simulation {
   int check_node(int n) const;
 
   void setup();
+  // A body's sparse matrix pattern and its solver's symbolic analysis, made when the body first needs
+  // them: a rigid body never does (a room of 10 000 rigid items would otherwise hold 10 000 unused
+  // patterns and analyses, about two thirds of its memory).
+  void prepare_matrix(int body);
+  void prepare_flexible_matrices();
 
   // Initial accelerations from the equations of motion, and the first forces.
   void start();

@@ -119,7 +119,6 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::setup() {
     bs.nodes = model_.body(b).nodes;
     bs.elements = model_.body(b).elements;
     for (size_t k = 0; k < bs.nodes.size(); ++k) local_index_[bs.nodes[k]] = static_cast<int>(k);
-    detail::build_pattern(bs, model_, local_index_);
     bs.fixed.assign(bs.ndof(), 0);
     for (size_t k = 0; k < bs.nodes.size(); ++k)
       for (int i = 0; i < 6; ++i)
@@ -128,8 +127,6 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::setup() {
     for (int n : bs.nodes) c += model_.node(n).X;
     bs.Xc = bs.nodes.empty() ? c : Vec3(c / bs.nodes.size());
     body_order_.push_back(b);
-    solvers_[b] = std::make_unique<LinearSolver>();
-    solvers_[b]->analyse(bs.K);
   }
   std::stable_sort(body_order_.begin(), body_order_.end(),
                    [&](int a, int b) { return systems_[a].elements.size() > systems_[b].elements.size(); });
@@ -137,8 +134,23 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::setup() {
 }
 
 template <class Element, class Integrator, class LinearSolver, class Contact>
+inline void Simulation<Element, Integrator, LinearSolver, Contact>::prepare_matrix(int b) {
+  if (solvers_[b]) return;
+  detail::build_pattern(systems_[b], model_, local_index_);
+  solvers_[b] = std::make_unique<LinearSolver>();
+  solvers_[b]->analyse(systems_[b].K);
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
+inline void Simulation<Element, Integrator, LinearSolver, Contact>::prepare_flexible_matrices() {
+  for (int b = 0; b < model_.num_bodies(); ++b)
+    if (!systems_[b].rigid) prepare_matrix(b);
+}
+
+template <class Element, class Integrator, class LinearSolver, class Contact>
 inline void Simulation<Element, Integrator, LinearSolver, Contact>::start() {
   started_ = true;
+  prepare_flexible_matrices();
   evaluate_elements(false);
   if (opt_.stiffness_damping > 0) {  // the damping's rate starts from rest at the present deformations
     dn_ = d_;
@@ -184,15 +196,19 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::transfer_sta
   ar(s.predictor_shift_, s.pair_predictor_shift_, s.pair_active_, s.contact_iterated_, s.groups_, s.group_pairs_,
      s.group_of_);
   ar(s.frames_, s.d_, s.fl_, s.dn_, s.fd_, s.fdn_, s.committed_, s.trial_, s.ledger_, s.timings_, s.fields_);
-  for (auto& bs : s.systems_) {
+  for (int b = 0; b < s.model_.num_bodies(); ++b) {
+    auto& bs = s.systems_[b];
     // The matrix's values in its fixed pattern: as factorised, unless assembled for the next refresh.
-    const std::size_t nnz = static_cast<std::size_t>(bs.K.nonZeros());
+    // A body whose matrix was never made (rigid, or not started) has none.
+    std::size_t nnz = static_cast<std::size_t>(bs.K.nonZeros());
     if constexpr (Archive::saving) {
       ar(nnz);
       for (std::size_t i = 0; i < nnz; ++i) ar(bs.K.valuePtr()[i]);
     } else {
       std::size_t stored = 0;
       ar(stored);
+      if (stored > 0) s.prepare_matrix(b);
+      nnz = static_cast<std::size_t>(bs.K.nonZeros());
       ar.expect(stored, nnz, "matrix entries of a body");
       for (std::size_t i = 0; i < nnz; ++i) ar(bs.K.valuePtr()[i]);
     }
@@ -217,7 +233,8 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::refactorise_
     solvers_[b]->factorize(bs.K);
   }
   long made = 0;
-  for (const auto& solver : solvers_) made += solver->factorizations();
+  for (const auto& solver : solvers_)
+    if (solver) made += solver->factorizations();
   factorizations_offset_ -= made;
 }
 
