@@ -30,9 +30,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <type_traits>
+#include <unordered_map>
 #include <vector>
 
 #include "cgal_adapter.hpp"
@@ -187,7 +189,9 @@ class RoomContact {
   bool rigid_pair_hulls() const { return hulls_on_; }
   // Whether bodies a and b meet by their hulls (set_rigid_pair_hulls).
   bool hull_pair(int a, int b) const {
-    return !hull_pair_.empty() && hull_pair_[static_cast<std::size_t>(a) * bodies_.size() + b];
+    if (has_hull_.empty() || a == b || !has_hull_[a] || !has_hull_[b]) return false;
+    const std::pair<int, int> ab(std::min(a, b), std::max(a, b));
+    return !std::binary_search(nested_pairs_.begin(), nested_pairs_.end(), ab);
   }
   // The nodes of `body` an evaluation reads (positions, rotations, velocities) and puts forces on,
   // ascending: its nodes against planes, its surface points' nodes and its long axis. False when any
@@ -393,6 +397,7 @@ class RoomContact {
        c.plane_status_, c.share_);
     ar(c.point_state_, c.point_trial_, c.point_status_, c.point_share_, c.group_near_, c.group_state_live_);
     ar(c.steps_, c.broad_runs_, c.active_);
+    if constexpr (!Archive::saving) c.pair_force_index_.clear();  // of the pairs before the load
   }
 
   const std::vector<PairForce>& pair_forces() const { return pair_forces_; }
@@ -769,12 +774,34 @@ class RoomContact {
   }
 
   void add_pair_force(int a, int b, const Vec3& f) {
-    for (auto& pf : pair_forces_)
-      if (pf.body_a == a && pf.body_b == b) {
-        pf.force_on_a += f;
-        return;
-      }
+    if (PairForce* pf = find_pair_force(a, b)) {
+      pf->force_on_a += f;
+      return;
+    }
     pair_forces_.push_back({a, b, f});
+    if (!pair_force_index_.empty()) pair_force_index_.emplace(pair_force_key(a, b), pair_forces_.size() - 1);
+  }
+  // A handful of pairs is scanned; a room of thousands of items on the floor has thousands, found by
+  // a hash index (a scan made each step quadratic in the items). The index is made again whenever
+  // pair_forces_ was changed otherwise (cleared, filtered, loaded: its size then differs).
+  PairForce* find_pair_force(int a, int b) {
+    constexpr std::size_t scan_limit = 32;
+    if (pair_forces_.size() <= scan_limit) {
+      if (!pair_force_index_.empty()) pair_force_index_.clear();
+      for (auto& pf : pair_forces_)
+        if (pf.body_a == a && pf.body_b == b) return &pf;
+      return nullptr;
+    }
+    if (pair_force_index_.size() != pair_forces_.size()) {
+      pair_force_index_.clear();
+      for (std::size_t i = 0; i < pair_forces_.size(); ++i)
+        pair_force_index_.emplace(pair_force_key(pair_forces_[i].body_a, pair_forces_[i].body_b), i);
+    }
+    const auto it = pair_force_index_.find(pair_force_key(a, b));
+    return it == pair_force_index_.end() ? nullptr : &pair_forces_[it->second];
+  }
+  static std::uint64_t pair_force_key(int a, int b) {
+    return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
   }
 
   // f(node, plane, force) for each of a body's (node, plane) contacts, evaluated at the view's state
@@ -868,6 +895,7 @@ class RoomContact {
   // Every hull pair's contact points at the view's state: forces into f, their tangents (both bodies
   // implicit) for the rigid groups.
   void hull_contacts(const ContactView& view, Eigen::VectorXd& f);
+  const std::vector<std::pair<int, int>>& near_hull_pairs();
   static constexpr double hull_bias = 1e-3;  // m: a's faces win ties up to this (hull_pair_contact)
 
   static Vec3 point_velocity(const ContactView& view, int n, const Vec3& arm);
@@ -893,6 +921,7 @@ class RoomContact {
   BroadPhase broad_phase_;
   std::vector<std::pair<int, int>> candidates_;
   std::vector<PairForce> pair_forces_;
+  std::unordered_map<std::uint64_t, std::size_t> pair_force_index_;  // find_pair_force: (a, b) -> index
   std::vector<NodalContactTangent> tangents_;
   std::vector<PairContactTangent> pair_tangents_;
   struct ImplicitPair {
@@ -903,7 +932,10 @@ class RoomContact {
   std::vector<ImplicitPair> implicit_pairs_;  // the pairs behind pair_tangents_
   long nodes_read_revision_ = 0;              // nodes_read: counts the changes of what it answers
   bool hulls_on_ = false;                     // set_rigid_pair_hulls
-  std::vector<char> hull_pair_;               // per body pair: meets by its hulls
+  std::vector<char> has_hull_;                // per body: rigid with a hull (empty: hulls off)
+  std::vector<std::pair<int, int>> nested_pairs_;  // hull bodies (a < b, sorted) nested at rest: element pairs
+  std::vector<int> hull_order_;                  // scratch of hull_contacts: hull bodies by their box's lower x
+  std::vector<std::pair<int, int>> hull_candidates_;  // scratch of hull_contacts: pairs whose boxes come near
   bool any_element_pairs_ = true;             // some body pair meets by its members
   std::vector<char> hull_body_;               // per body: in a hull pair
   std::vector<Vec3> hull_x_;                  // hull vertices' positions at the evaluation, by point

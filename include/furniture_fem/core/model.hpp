@@ -176,6 +176,7 @@ struct PointMass {
 struct Body {
   std::string name;
   std::vector<int> nodes, elements, members;
+  std::vector<int> point_masses;  // indices into Model::point_masses(), in the order they were added
 };
 
 struct MemberOptions {
@@ -193,7 +194,7 @@ struct MemberOptions {
 class Model {
  public:
   int add_body(std::string name) {
-    bodies_.push_back(Body{std::move(name), {}, {}, {}});
+    bodies_.push_back(Body{std::move(name), {}, {}, {}, {}});
     return static_cast<int>(bodies_.size()) - 1;
   }
   int add_section(Section s) {
@@ -240,6 +241,7 @@ class Model {
                          " kg m^2 about axis " + std::string(1, "xyz"[i]) + ")");
     if (!axes.allFinite() || (axes.transpose() * axes - Mat3::Identity()).norm() > 1e-9 || axes.determinant() < 0)
       throw ModelError(who + ": the principal axes must be a rotation (orthonormal columns, right-handed)");
+    bodies_[nodes_[node].body].point_masses.push_back(static_cast<int>(point_masses_.size()));
     point_masses_.push_back(PointMass{node, mass, inertia, axes});
   }
 
@@ -357,8 +359,7 @@ class Model {
   double body_mass(int b) const {
     double m = 0;
     for (int e : bodies_.at(b).elements) m += elements_[e].line_mass * element_length(e);
-    for (const auto& p : point_masses_)
-      if (nodes_[p.node].body == b) m += p.mass;
+    for (int i : bodies_.at(b).point_masses) m += point_masses_[i].mass;
     return m;
   }
   // Centre of gravity of a body in its initial configuration: every mass it carries, its elements'
@@ -377,11 +378,11 @@ class Model {
       m += me;
       c += me * 0.5 * (position(elements_[e].n1) + position(elements_[e].n2));
     }
-    for (const auto& p : point_masses_)
-      if (nodes_[p.node].body == b) {
-        m += p.mass;
-        c += p.mass * position(p.node);
-      }
+    for (int i : bodies_.at(b).point_masses) {
+      const PointMass& p = point_masses_[i];
+      m += p.mass;
+      c += p.mass * position(p.node);
+    }
     return m > 0 ? Vec3(c / m) : c;
   }
   // Inertia tensor (kg m^2) of a body about a point, in the initial configuration, with the masses
@@ -400,11 +401,11 @@ class Model {
       for (int n : {el.n1, el.n2}) add_mass(nodes_[n].X, 0.5 * m);
       I += J * Mat3::Identity();  // two ends, half each
     }
-    for (const auto& p : point_masses_)
-      if (nodes_[p.node].body == b) {
-        add_mass(nodes_[p.node].X, p.mass);
-        I += p.inertia_tensor();
-      }
+    for (int i : bodies_.at(b).point_masses) {
+      const PointMass& p = point_masses_[i];
+      add_mass(nodes_[p.node].X, p.mass);
+      I += p.inertia_tensor();
+    }
     return I;
   }
   double element_length(int e) const {
@@ -435,11 +436,10 @@ class Model {
       throw ModelError("body '" + bodies_.at(b).name + "': mass factor must be positive and finite (got " +
                        detail::fmt(factor) + ")");
     for (int e : bodies_.at(b).elements) elements_[e].line_mass *= factor;
-    for (auto& p : point_masses_)
-      if (nodes_[p.node].body == b) {
-        p.mass *= factor;
-        p.inertia *= factor;
-      }
+    for (int i : bodies_.at(b).point_masses) {
+      point_masses_[i].mass *= factor;
+      point_masses_[i].inertia *= factor;
+    }
   }
   void set_line_mass(int e, double mu) {
     if (!(mu >= 0) || !std::isfinite(mu))

@@ -13,6 +13,7 @@
 #include <initializer_list>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "../core/errors.hpp"
@@ -91,19 +92,37 @@ class CsvWriter {
     if (n != columns_.size())
       throw InputError("CsvWriter '" + path_ + "': row " + std::to_string(rows_ + 1) + " has " +
                                   std::to_string(n) + " values for " + std::to_string(columns_.size()) + " columns");
-    char num[64];
     for (std::size_t i = 0; i < n; ++i) {
       if (i) buf_ += ',';
-      // to_chars ignores the C locale, so a decimal comma can never corrupt the file.
-      const auto r = std::to_chars(num, num + sizeof num, values[i], std::chars_format::general, opt_.precision);
-      buf_.append(num, r.ptr);
+      append_number(values[i]);
     }
-    buf_ += '\n';
-    ++rows_;
-    if (++pending_ >= opt_.flush_rows || std::chrono::steady_clock::now() - last_flush_ >= flush_period()) flush();
+    end_row();
   }
   void row(const std::vector<double>& v) { row(v.data(), v.size()); }
   void row(std::initializer_list<double> v) { row(v.begin(), v.size()); }
+
+  // A row of numbers and labels (a long-format file: "t, item_a, item_b, fx, ..."); labels are quoted
+  // as the header's names are.
+  struct Cell {
+    Cell(double v) : value(v) {}
+    Cell(std::string_view t) : text(t), is_text(true) {}
+    std::string_view text;
+    double value = 0;
+    bool is_text = false;
+  };
+  void cells_row(std::initializer_list<Cell> cells) {
+    if (cells.size() != columns_.size())
+      throw InputError("CsvWriter '" + path_ + "': row " + std::to_string(rows_ + 1) + " has " +
+                       std::to_string(cells.size()) + " cells for " + std::to_string(columns_.size()) + " columns");
+    bool first = true;
+    for (const Cell& c : cells) {
+      if (!first) buf_ += ',';
+      first = false;
+      if (c.is_text) buf_ += detail::csv::quote(std::string(c.text));
+      else append_number(c.value);
+    }
+    end_row();
+  }
 
   // Writes buffered rows and flushes the stream to the operating system.
   void flush() {
@@ -123,6 +142,17 @@ class CsvWriter {
   const std::vector<std::string>& columns() const { return columns_; }
 
  private:
+  void append_number(double v) {
+    char num[64];
+    // to_chars ignores the C locale, so a decimal comma can never corrupt the file.
+    const auto r = std::to_chars(num, num + sizeof num, v, std::chars_format::general, opt_.precision);
+    buf_.append(num, r.ptr);
+  }
+  void end_row() {
+    buf_ += '\n';
+    ++rows_;
+    if (++pending_ >= opt_.flush_rows || std::chrono::steady_clock::now() - last_flush_ >= flush_period()) flush();
+  }
   std::chrono::steady_clock::duration flush_period() const {
     return std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(opt_.flush_seconds));
   }

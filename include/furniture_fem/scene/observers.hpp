@@ -268,8 +268,9 @@ class FinalStates : public RunObserver {
       settle_steps_ = 1;
       add_item_forces(run.sim.pair_forces());
     }
+    const std::vector<int> resting_on = bodies_rested_on(run.model.num_bodies());
     for (const auto& it : run.items) {
-      summary.items.push_back(final_state(run, it));
+      summary.items.push_back(final_state(run, it, resting_on[it.body]));
       if (summary.status == "diverged") summary.items.back().state = "diverged";
     }
   }
@@ -289,7 +290,23 @@ class FinalStates : public RunObserver {
     for (const auto& pf : forces)
       if (pf.body_a >= 0 && pf.body_b >= 0) settle_fz_on_a_[{pf.body_a, pf.body_b}] += pf.force_on_a.z();
   }
-  ItemFinalState final_state(const RunView& run, const ItemInfo& it) const {
+  // Per body, the body it rests (or leans) on: the one that pushes it up the most, more than 1 N on
+  // average over the last 0.5 s (an item pressed down by another one does not rest on it); -1: none.
+  // One pass over the pairs, in their order, for every body (a pass per item was quadratic).
+  std::vector<int> bodies_rested_on(int bodies) const {
+    std::vector<int> on(bodies, -1);
+    std::vector<double> most_up(bodies, 1.0);
+    const auto consider = [&](int body, int other, double up) {
+      if (up > most_up[body]) most_up[body] = up, on[body] = other;
+    };
+    for (const auto& [pair, fz_sum] : settle_fz_on_a_) {
+      const auto [a, b] = pair;
+      consider(a, b, fz_sum / settle_steps_);
+      consider(b, a, -fz_sum / settle_steps_);
+    }
+    return on;
+  }
+  ItemFinalState final_state(const RunView& run, const ItemInfo& it, int resting_on) const {
     const Model& model = run.model;
     const SimulationView& sim = run.sim;
     ItemFinalState st;
@@ -307,16 +324,7 @@ class FinalStates : public RunObserver {
       st.max_node_speed = std::max(st.max_node_speed, sim.velocity(n).head<3>().norm());
     }
     st.lift = low - low0;
-    // It rests (or leans) on the item that pushes it up the most (more than 1 N on average over the
-    // last 0.5 s): an item pressed down by another one does not rest on it.
-    double most_up = 1.0;
-    for (const auto& [pair, fz_sum] : settle_fz_on_a_) {
-      const auto [a, b] = pair;
-      const int other = a == it.body ? b : b == it.body ? a : -100;
-      if (other < 0) continue;
-      const double up = (a == it.body ? fz_sum : -fz_sum) / settle_steps_;
-      if (up > most_up) most_up = up, st.resting_on = model.body(other).name;
-    }
+    if (resting_on >= 0) st.resting_on = model.body(resting_on).name;
     if (st.tilt_deg > overturned_tilt_deg) st.state = "overturned";
     else if (!st.resting_on.empty() && (st.tilt_deg > 5 || st.lift > 0.03)) st.state = "resting_on_item";
     else if (st.tilt_deg > 5) st.state = "tilted";
@@ -574,7 +582,8 @@ class EnergyHistory : public RowHistory {
 // phase of it (a cabinet at rest showed -75 N from the floor). The first row is the initial state's.
 class ContactForceHistory : public RunObserver {
  public:
-  // The column prefix of every pair the contact model can report, in the order of the columns.
+  // The column prefix of every pair the contact model can report in contact_forces.csv, in the order of
+  // the columns; pairs of items only when the scene's outputs put them in columns (OutputSpec::pair_columns).
   static std::vector<std::pair<std::pair<int, int>, std::string>> pairs(const RunView& run) {
     std::vector<std::pair<std::pair<int, int>, std::string>> out;
     const int nb = run.model.num_bodies();
@@ -583,33 +592,47 @@ class ContactForceHistory : public RunObserver {
     for (int a = 0; a < nb; ++a) out.push_back({{a, -2}, name(a) + "|walls"});
     if (!run.spec.obstacles.empty())
       for (int a = 0; a < nb; ++a) out.push_back({{a, -3}, name(a) + "|obstacles"});
-    for (int a = 0; a < nb; ++a)
-      for (int b = a + 1; b < nb; ++b) out.push_back({{a, b}, name(a) + "|" + name(b)});
+    if (run.spec.outputs.pair_columns(nb))
+      for (int a = 0; a < nb; ++a)
+        for (int b = a + 1; b < nb; ++b) out.push_back({{a, b}, name(a) + "|" + name(b)});
     return out;
   }
   void begin(const RunView& run) override {
     const std::vector<std::string> cols = columns(run);
     row_.assign(cols.size(), 0.0);
     csv_.emplace(path(run), cols);
+    if (pair_rows_) pair_csv_.emplace(pair_path(run), pair_columns());
     for (const auto& pf : run.sim.pair_forces()) add(pf.body_a, pf.body_b, pf.force_on_a);
     steps_ = 1;
-    write(run.sim.time());
+    write(run, run.sim.time());
   }
   void after_step(const RunView& run, const StepInfo&) override {
     ++steps_;
     for (const auto& pf : run.sim.pair_forces()) add(pf.body_a, pf.body_b, pf.force_on_a);
-    if (run.row_due()) write(run.sim.time());
+    if (run.row_due()) write(run, run.sim.time());
   }
-  void end(const RunView&, RunSummary&) override { csv_->flush(); }
-  void save(StateWriter& w) override { w(csv_->position(), row_, steps_); }
+  void end(const RunView&, RunSummary&) override {
+    csv_->flush();
+    if (pair_csv_) pair_csv_->flush();
+  }
+  void save(StateWriter& w) override {
+    w(csv_->position(), row_, steps_);
+    if (pair_csv_) w(pair_csv_->position(), pair_sums_);
+  }
   void resume(const RunView& run, StateReader& r) override {
     CsvWriter::Position at;
     r(at, row_, steps_);
     csv_.emplace(path(run), columns(run), at);
+    if (pair_rows_) {
+      r(at, pair_sums_);
+      pair_csv_.emplace(pair_path(run), pair_columns(), at);
+    }
   }
 
  private:
   static std::string path(const RunView& run) { return run.out_dir + "/contact_forces.csv"; }
+  static std::string pair_path(const RunView& run) { return run.out_dir + "/contact_pairs.csv"; }
+  static std::vector<std::string> pair_columns() { return {"t", "item_a", "item_b", "fx", "fy", "fz"}; }
   // The header, and each pair's first column in column_.
   std::vector<std::string> columns(const RunView& run) {
     std::vector<std::string> cols{"t"};
@@ -618,27 +641,41 @@ class ContactForceHistory : public RunObserver {
       column_.emplace(pair, cols.size());
       for (const char* c : {"_fx", "_fy", "_fz"}) cols.push_back(prefix + c);
     }
+    pair_rows_ = !run.spec.outputs.pair_columns(run.model.num_bodies());
     return cols;
   }
-  std::optional<CsvWriter> csv_;
+  std::optional<CsvWriter> csv_, pair_csv_;
   std::map<std::pair<int, int>, std::size_t> column_;  // the pair's _fx column
   std::vector<double> row_;                            // the force sums since the previous row
+  bool pair_rows_ = false;                             // item pairs in contact_pairs.csv
+  std::map<std::pair<int, int>, Vec3> pair_sums_;      // there: the touching pairs' sums since the previous row
   int steps_ = 0;
 
   void add(int a, int b, const Vec3& f_on_a) {
     Vec3 f = f_on_a;
     if (a >= 0 && b >= 0 && b < a) std::swap(a, b), f = -f;
+    if (pair_rows_ && b >= 0) {
+      pair_sums_.try_emplace({a, b}, Vec3::Zero()).first->second += f;
+      return;
+    }
     const auto it = column_.find({a, b});
     if (it == column_.end())
       throw std::logic_error("contact_forces.csv: a contact between bodies " + std::to_string(a) + " and " +
                              std::to_string(b) + " has no column");
     for (int c = 0; c < 3; ++c) row_[it->second + c] += f[c];
   }
-  void write(double t) {
+  void write(const RunView& run, double t) {
     for (std::size_t i = 1; i < row_.size(); ++i) row_[i] /= steps_;
     row_[0] = t;
     csv_->row(row_);
     std::fill(row_.begin(), row_.end(), 0.0);
+    for (const auto& [pair, sum] : pair_sums_) {
+      if (sum.isZero(0.0)) continue;
+      const Vec3 mean = sum / steps_;
+      const std::string_view a = run.model.body(pair.first).name, b = run.model.body(pair.second).name;
+      pair_csv_->cells_row({t, a, b, mean.x(), mean.y(), mean.z()});
+    }
+    pair_sums_.clear();
     steps_ = 0;
   }
 };

@@ -363,7 +363,7 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
 
   if (r.has("outputs")) {
     const ObjectReader o = r.object("outputs");
-    o.allow_only({"folder", "markers", "sectional_forces", "vtu_every", "figures"});
+    o.allow_only({"folder", "markers", "sectional_forces", "vtu_every", "figures", "contact_pairs"});
     s.outputs.folder = o.string("folder", s.outputs.folder);
     o.require(!s.outputs.folder.empty(), "folder", "must not be empty");
     o.array("markers", [&](const nlohmann::json& v, const std::string& path) {
@@ -408,6 +408,8 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
     if (o.has("vtu_every")) o.require(every >= 0 && every <= 100000000, "vtu_every", "must lie in [0, 1e8] (0: no VTU)");
     s.outputs.vtu_every = static_cast<int>(every);
     s.outputs.figures = o.boolean("figures", s.outputs.figures);
+    s.outputs.contact_pairs = o.enumeration("contact_pairs", detail::contact_pair_output_names,
+                                            s.outputs.contact_pairs, "contact pair output");
   }
   return s;
 }

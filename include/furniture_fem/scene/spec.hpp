@@ -247,12 +247,25 @@ struct SectionalForceRequest {
   int element = 0;
 };
 
+// How contact_forces.csv holds the forces between items (docs/io/output.md): three columns for every
+// pair of bodies (a room of n bodies has n (n - 1) / 2 pairs), or one row per touching pair and history
+// row in contact_pairs.csv; automatic: columns up to OutputSpec::max_pair_column_bodies bodies.
+enum class ContactPairOutput { automatic, columns, rows };
+
 struct OutputSpec {
+  // Above this many bodies, `automatic` writes rows: 100 bodies are 4 950 pairs, 14 850 columns; 10 000
+  // would be 150 million.
+  static constexpr int max_pair_column_bodies = 100;
   std::string folder = "out";  // relative to the run's working folder
   std::vector<MarkerRequest> markers;
   std::vector<SectionalForceRequest> sectional_forces;
   int vtu_every = 0;   // write VTU every N steps; 0: none
   bool figures = true;
+  ContactPairOutput contact_pairs = ContactPairOutput::automatic;
+  bool pair_columns(int bodies) const {
+    return contact_pairs == ContactPairOutput::columns ||
+           (contact_pairs == ContactPairOutput::automatic && bodies <= max_pair_column_bodies);
+  }
 };
 
 struct SceneSpec {

@@ -140,7 +140,8 @@ inline nlohmann::json to_json(const SceneSpec& s) {
                   {"markers", markers},
                   {"sectional_forces", forces},
                   {"vtu_every", s.outputs.vtu_every},
-                  {"figures", s.outputs.figures}};
+                  {"figures", s.outputs.figures},
+                  {"contact_pairs", enum_name(detail::contact_pair_output_names, s.outputs.contact_pairs)}};
   return j;
 }
 

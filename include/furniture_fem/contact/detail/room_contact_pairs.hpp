@@ -153,7 +153,8 @@ inline double RoomContact::hull_L(int a, int b) const {
 
 inline void RoomContact::update_hull_pairs(const Model& model) {
   const std::size_t nb = bodies_.size();
-  hull_pair_.assign(hulls_on_ ? nb * nb : 0, 0);
+  has_hull_.assign(hulls_on_ ? nb : 0, 0);
+  nested_pairs_.clear();
   hull_half_width_.assign(nb, 0.0);
   if (!hulls_on_) return;
   const auto points = std::max<long long>(model.num_nodes(), static_cast<long long>(surface_points_.size()));
@@ -191,9 +192,7 @@ inline void RoomContact::update_hull_pairs(const Model& model) {
     lo[b].array() -= hull_half_width_[b];
     hi[b].array() += hull_half_width_[b];
   }
-  for (int a : hull_bodies)
-    for (int b : hull_bodies)
-      if (a != b) hull_pair_[a * nb + b] = 1;
+  for (int b : hull_bodies) has_hull_[b] = 1;
   std::vector<int> by_x = hull_bodies;
   std::sort(by_x.begin(), by_x.end(), [&](int a, int b) { return lo[a].x() != lo[b].x() ? lo[a].x() < lo[b].x() : a < b; });
   std::vector<int> nested_partners(nb, 0);
@@ -204,11 +203,12 @@ inline void RoomContact::update_hull_pairs(const Model& model) {
       if ((lo[a].array() > hi[b].array()).any() || (lo[b].array() > hi[a].array()).any()) continue;
       // Overlapping hulls at rest (deeper than the contact distance allows): nested, element pairs.
       if (detail::hull_separation(hull_of(a), rest(a), hull_of(b), rest(b), hull_distance(a, b)) < -nested_overlap) {
-        hull_pair_[a * nb + b] = hull_pair_[b * nb + a] = 0;
+        nested_pairs_.emplace_back(a, b);
         ++nested_partners[a], ++nested_partners[b];
         any_nested = true;
       }
     }
+  std::sort(nested_pairs_.begin(), nested_pairs_.end());
   // A body is in a hull pair when some other hull body is not nested with it; element pairs are left
   // when a body has no hull or some pair is nested.
   hull_body_.assign(nb, 0);
@@ -257,56 +257,86 @@ inline void RoomContact::hull_contacts(const ContactView& view, Eigen::VectorXd&
   }
   const auto at = [this](int i) -> const Vec3& { return hull_x_[i]; };
   detail::HullPairContact hc;
-  for (int a = 0; a < static_cast<int>(nb); ++a)
-    for (int b = a + 1; b < static_cast<int>(nb); ++b) {
-      if (!hull_pair_[a * nb + b]) continue;
-      // Boxes apart by more than the contact distance: no face can touch.
-      const double d = hull_distance(a, b);
-      if (((hull_box_lo_[a] - hull_box_hi_[b]).array() > d).any() || ((hull_box_lo_[b] - hull_box_hi_[a]).array() > d).any())
-        continue;
-      if (!detail::hull_pair_contact(hull_of(a), at, hull_of(b), at, d, 0.0, hull_bias, hc))
-        continue;
-      const int inc = hc.reference_on_a ? b : a, ref = hc.reference_on_a ? a : b;
-      const int ref_node = hull_point(ref, hc.reference->frame[0]).first;
-      const int inc_face_node = hull_point(inc, hc.incident->frame[0]).first;
-      for (const auto& pt : hc.points) {
-        HullContact c;
-        c.body_a = inc, c.body_b = ref;
-        // A corner of the incident face is a hull point of its body; any other point is held by the
-        // incident face's first node.
-        const bool corner = pt.kind == detail::HullPointKind::corner;
-        const Vec3& x_inc = pt.x;
-        c.node_a = corner ? hull_point(inc, pt.id).first : inc_face_node;
-        c.node_b = ref_node;
-        const Mat3& Ra = (*view.rotations)[c.node_a];
-        const Mat3& Rb = (*view.rotations)[c.node_b];
-        c.arm_a0 = Ra.transpose() * (x_inc - view.x[c.node_a]);
-        c.arm_b0 = Rb.transpose() * (x_inc - view.x[c.node_b]);
-        c.normal0 = Rb.transpose() * hc.normal;
-        c.gap0 = pt.gap;
-        c.L = hull_L(a, b);
-        c.share = hc.incident->share;
-        c.key = hull_key(pt, inc, ref);
-        c.implicit = implicit && bodies_[a].implicit && bodies_[b].implicit;
-        ContactState st = committed_hull_state(c);
-        const ContactForce cf = hull_contact_force(view, c, st);
-        if (pair_history_ && c.key >= 0 && cf.in_contact) pair_trial_.set(c.key, st);
-        if (!cf.in_contact) continue;
-        apply_hull_force(view, c, cf.on_a, f);
-        c.reported = c.body_a < c.body_b ? cf.on_a : Vec3(-cf.on_a);
-        add_pair_force(std::min(a, b), std::max(a, b), c.reported);
-        ++active_;
-        if (c.implicit) {
-          const Vec3 arm_a = Ra * c.arm_a0, arm_b = Rb * c.arm_b0;
-          PairContactTangent t{c.body_a, c.body_b, c.node_a, c.node_a, c.node_b, c.node_b, 0, 0, x_inc, cf.K, cf.C,
-                               view.x[c.node_a] + arm_a - (view.x[c.node_b] + arm_b),
-                               point_velocity(view, c.node_a, arm_a) - point_velocity(view, c.node_b, arm_b),
-                               c.arm_a0, c.arm_b0};
-          pair_tangents_.push_back(t);
-        }
-        hull_contacts_.push_back(c);
+  for (const auto& [a, b] : near_hull_pairs()) {
+    if (!hull_pair(a, b)) continue;
+    // Boxes apart by more than the contact distance: no face can touch.
+    const double d = hull_distance(a, b);
+    if (((hull_box_lo_[a] - hull_box_hi_[b]).array() > d).any() || ((hull_box_lo_[b] - hull_box_hi_[a]).array() > d).any())
+      continue;
+    if (!detail::hull_pair_contact(hull_of(a), at, hull_of(b), at, d, 0.0, hull_bias, hc))
+      continue;
+    const int inc = hc.reference_on_a ? b : a, ref = hc.reference_on_a ? a : b;
+    const int ref_node = hull_point(ref, hc.reference->frame[0]).first;
+    const int inc_face_node = hull_point(inc, hc.incident->frame[0]).first;
+    for (const auto& pt : hc.points) {
+      HullContact c;
+      c.body_a = inc, c.body_b = ref;
+      // A corner of the incident face is a hull point of its body; any other point is held by the
+      // incident face's first node.
+      const bool corner = pt.kind == detail::HullPointKind::corner;
+      const Vec3& x_inc = pt.x;
+      c.node_a = corner ? hull_point(inc, pt.id).first : inc_face_node;
+      c.node_b = ref_node;
+      const Mat3& Ra = (*view.rotations)[c.node_a];
+      const Mat3& Rb = (*view.rotations)[c.node_b];
+      c.arm_a0 = Ra.transpose() * (x_inc - view.x[c.node_a]);
+      c.arm_b0 = Rb.transpose() * (x_inc - view.x[c.node_b]);
+      c.normal0 = Rb.transpose() * hc.normal;
+      c.gap0 = pt.gap;
+      c.L = hull_L(a, b);
+      c.share = hc.incident->share;
+      c.key = hull_key(pt, inc, ref);
+      c.implicit = implicit && bodies_[a].implicit && bodies_[b].implicit;
+      ContactState st = committed_hull_state(c);
+      const ContactForce cf = hull_contact_force(view, c, st);
+      if (pair_history_ && c.key >= 0 && cf.in_contact) pair_trial_.set(c.key, st);
+      if (!cf.in_contact) continue;
+      apply_hull_force(view, c, cf.on_a, f);
+      c.reported = c.body_a < c.body_b ? cf.on_a : Vec3(-cf.on_a);
+      add_pair_force(std::min(a, b), std::max(a, b), c.reported);
+      ++active_;
+      if (c.implicit) {
+        const Vec3 arm_a = Ra * c.arm_a0, arm_b = Rb * c.arm_b0;
+        PairContactTangent t{c.body_a, c.body_b, c.node_a, c.node_a, c.node_b, c.node_b, 0, 0, x_inc, cf.K, cf.C,
+                             view.x[c.node_a] + arm_a - (view.x[c.node_b] + arm_b),
+                             point_velocity(view, c.node_a, arm_a) - point_velocity(view, c.node_b, arm_b),
+                             c.arm_a0, c.arm_b0};
+        pair_tangents_.push_back(t);
       }
+      hull_contacts_.push_back(c);
     }
+  }
+}
+
+inline const std::vector<std::pair<int, int>>& RoomContact::near_hull_pairs() {
+  // Every pair (a < b) of hull bodies whose vertex boxes, each grown by the largest contact reach and a
+  // micrometre, overlap: a superset of the pairs whose boxes come within hull_distance, found by
+  // sweeping the boxes along x; in ascending (a, b), the order of a loop over all pairs, so that forces
+  // add up in the same order (the same results to the bit) in n log n rather than n^2 per step.
+  const std::size_t nb = bodies_.size();
+  double reach = 0;
+  hull_order_.clear();
+  for (std::size_t b = 0; b < nb; ++b)
+    if (hull_body_[b]) {
+      hull_order_.push_back(static_cast<int>(b));
+      reach = std::max(reach, surface_at(static_cast<int>(b)) ? 0.0 : hull_half_width_[b]);
+    }
+  const double grow = reach + 1e-6;
+  const auto lo_x = [&](int b) { return hull_box_lo_[b].x() - grow; };
+  std::sort(hull_order_.begin(), hull_order_.end(), [&](int a, int b) { return lo_x(a) != lo_x(b) ? lo_x(a) < lo_x(b) : a < b; });
+  hull_candidates_.clear();
+  for (std::size_t i = 0; i < hull_order_.size(); ++i) {
+    const int a = hull_order_[i];
+    for (std::size_t j = i + 1; j < hull_order_.size() && lo_x(hull_order_[j]) <= hull_box_hi_[a].x() + grow; ++j) {
+      const int b = hull_order_[j];
+      if (((hull_box_lo_[a] - hull_box_hi_[b]).array() > 2 * grow).any() ||
+          ((hull_box_lo_[b] - hull_box_hi_[a]).array() > 2 * grow).any())
+        continue;
+      hull_candidates_.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  }
+  std::sort(hull_candidates_.begin(), hull_candidates_.end());
+  return hull_candidates_;
 }
 
 inline Vec3 RoomContact::point_velocity(const ContactView& view, int n, const Vec3& arm) {

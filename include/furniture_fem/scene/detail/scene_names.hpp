@@ -43,6 +43,8 @@ inline constexpr EnumNames<PlaneContactAt, 2> plane_contact_at_names{
     {{PlaneContactAt::centre_lines, "centre_lines"}, {PlaneContactAt::surfaces, "surfaces"}}};
 inline constexpr EnumNames<RigidPairContact, 2> rigid_pair_contact_names{
     {{RigidPairContact::members, "members"}, {RigidPairContact::hulls, "hulls"}}};
+inline constexpr EnumNames<ContactPairOutput, 3> contact_pair_output_names{
+    {{ContactPairOutput::automatic, "auto"}, {ContactPairOutput::columns, "columns"}, {ContactPairOutput::rows, "rows"}}};
 inline constexpr EnumNames<ContactStart, 2> contact_start_names{
     {{ContactStart::touching, "touching"}, {ContactStart::settled, "settled"}}};
 inline constexpr EnumNames<IntegratorKind, 3> integrator_names{
