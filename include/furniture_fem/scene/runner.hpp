@@ -14,7 +14,6 @@
 #include <chrono>
 #include <cstddef>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
@@ -155,12 +154,12 @@ inline void check_motion_sampling(const SceneSpec& spec, const TableMotion& moti
 // dt up to this many times the explicit contact's estimated stable step runs (the energy diagnoses
 // name the estimate if the run then creates or loses energy); beyond it the scene is refused
 // (check_contact_step). The estimate is conservative: measured margins in docs/scene/scene_file.md,
-// "The contact's stable step".
+// "A dt too coarse for the motion or the contact".
 inline constexpr double contact_step_error_factor = 2.0;
 
-// A dt at which the explicit contact cannot resolve an item's rocking or impacts (dt = 1 s over a 10 s
-// run took 10 steps and reported "slid 0.104 m"; issue 51) is an InputError naming dt, the estimate and
-// its item, unless contact.allow_coarse_dt asks for it.
+// A dt at which the explicit contact cannot resolve an item's rocking or impacts (issue 51; at 2.66
+// times the estimate a cabinet slid four times as far) is an InputError naming dt, the estimate and its
+// item, unless allow_coarse_dt asks for it.
 inline void check_contact_step(const SceneSpec& spec, const ContactStepEstimate& est) {
   if (spec.allow_coarse_dt || !(spec.dt > contact_step_error_factor * est.dt)) return;
   throw InputError(spec.source, 0, "dt",
