@@ -141,7 +141,7 @@ int run(const CommandLine& cl, int rank, int ranks) {
   if (cl.scene_of >= 0) return rank == 0 ? write_scene_of(study, cl) : exit_done;
   if (rank == 0) std::cerr << "furniture_fem " << version_string << ": study " << study.name << ", " << study.num_runs()
                            << " runs (" << study.num_realisations() << " realisations x " << study.num_variants()
-                           << " variants)\n";
+                           << " variants)\n" << study_size_line(study) << "\n";
 #ifdef FFEM_WITH_MPI
   if (ranks > 1) return run_mpi(study, cl, rank, ranks);
 #endif

@@ -37,7 +37,7 @@ inline bool serve(StudyFolder& folder, const std::vector<long>& pending, int loc
   int ranks = 1;
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   std::atomic<std::size_t> next{0};
-  StudyProgress bar(folder.study().num_runs(), folder.done(), progress);
+  StudyProgress bar(folder.study().num_runs(), folder.done(), progress, local_workers + ranks - 1);
   std::exception_ptr error;
   std::mutex error_mutex;
   const auto take = [&]() -> long {

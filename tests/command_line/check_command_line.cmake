@@ -74,6 +74,16 @@ set(PROGRAM "${program_saved}")
 # (unlike a script's background job) has SIGINT at its default.
 check(0 "completed at t = 0.050 s" --duration 0.05 --quiet --no-figures --out short)
 
+# What a run will take (docs/command_line.md): its steps and the explicit contact's stable step before
+# the first step, on stderr; with --quiet nothing of it for a run projected under a minute.
+# (check is a macro: a backslash in its regex is lost, so "." stands for the parentheses.)
+check(0 "run: 50 steps of dt = 0.001 s from t = 0 s to 0.05 s .the explicit contact's stable step: 0.00128313 s, item 'office_chair'."
+      --duration 0.05 --no-figures --out forecast)
+run_program(--duration 0.05 --quiet --no-figures --out forecast_quiet)
+if(NOT code STREQUAL "0" OR err MATCHES "run: ")
+  fail("furniture_quake --duration 0.05 --quiet: a short quiet run said what it will take (exit ${code}):\n${err}")
+endif()
+
 # The results folder (docs/io/output.md): run.json says how the run ended; a folder a run wrote is written
 # again without asking; a non-empty folder no run wrote is refused (exit 1, nothing touched) unless
 # --overwrite, which keeps the user's files.

@@ -949,7 +949,8 @@ TEST_CASE("a run that diverges to NaN ends as 'diverged' with its last finite st
                 "plane_contact_at": "centre_lines"},
     "integrator": {"frame_drift_refresh": 0},
     "duration": 1.0,
-    "dt": 0.005
+    "dt": 0.005,
+    "allow_coarse_dt": true
   })"),
                                        "diverging.json");
   RunOptions opt = quiet(out);
@@ -1338,6 +1339,103 @@ TEST_CASE("the energy ledger's verdict: closes within the tolerance, or says by 
   CHECK_FALSE(strict.energy.closes);
   CHECK_THAT(strict.energy.text, Catch::StartsWith("the energy ledger does not close") &&
                                      Catch::Contains("changed most between t = ") && Catch::Contains(strict.energy.term));
+}
+
+
+TEST_CASE("a dt beyond twice the explicit contact's stable step is refused unless the scene asks for it",
+          "[runner][dt]") {
+  // Issue 51: dt = 1 s over a 10 s run took 10 steps and reported a slide, without a word.
+  SceneSpec s;
+  s.source = "coarse.json";
+  s.dt = 0.01;
+  ContactStepEstimate est;
+  est.dt = 2e-3;
+  est.item = "locker";
+  est.stiffness_key = "the penalty alpha_kgf";
+  try {
+    check_contact_step(s, est);
+    FAIL("dt = 5 times the estimate was accepted");
+  } catch (const InputError& e) {
+    CHECK(e.field() == "dt");
+    CHECK_THAT(std::string(e.what()),
+               Catch::StartsWith("coarse.json: dt: 0.01 s is 5 times the explicit contact's stable step, estimated at "
+                                 "0.002 s for item 'locker'") &&
+                   Catch::Contains("more than 2 times it, the contact cannot resolve the item's rocking or impacts; "
+                                   "reduce dt or the penalty alpha_kgf, or set allow_coarse_dt: true"));
+  }
+  s.dt = contact_step_error_factor * est.dt;  // at the factor: runs (the energy diagnoses name the estimate)
+  CHECK_NOTHROW(check_contact_step(s, est));
+  s.dt = 0.01;
+  s.allow_coarse_dt = true;  // asked for
+  CHECK_NOTHROW(check_contact_step(s, est));
+  s.allow_coarse_dt = false;
+  CHECK_NOTHROW(check_contact_step(s, ContactStepEstimate{}));  // contact inside the implicit step: no limit
+  CHECK(contact_step_error_factor == 2.0);
+}
+
+TEST_CASE("allow_coarse_dt is read, and written only when set", "[runner][dt]") {
+  const json base = {{"name", "coarse"}, {"items", {{{"kind", "block"}, {"fidelity", "rigid"}, {"params", {{"mass_kg", 10.0}}}}}}};
+  const SceneSpec unset = parse_scene_json(base, "coarse.json");
+  CHECK_FALSE(unset.allow_coarse_dt);
+  CHECK_FALSE(to_json(unset).contains("allow_coarse_dt"));  // older scene.json files (and fingerprints) unchanged
+  json asked = base;
+  asked["allow_coarse_dt"] = true;
+  const SceneSpec set = parse_scene_json(asked, "coarse.json");
+  CHECK(set.allow_coarse_dt);
+  CHECK(to_json(set).at("allow_coarse_dt") == true);
+  CHECK(parse_scene_json(to_json(set), "again.json").allow_coarse_dt);
+  json wrong = base;
+  wrong["allow_coarse_dt"] = "yes";
+  CHECK_THROWS_WITH(parse_scene_json(wrong, "coarse.json"), Catch::Contains("allow_coarse_dt"));
+}
+
+TEST_CASE("an obstacle passing through an item at t = 0 is refused, naming both", "[runner][obstacles]") {
+  // Issue 51: a mesh through an item's members ran, the penalty pushing them apart with energy from
+  // nowhere (the ledger 6.7 % off, exit 0). A plate in the plane x = x0 crosses the block's edge tubes
+  // (10 mm wide: contact 5 mm from their centre lines) that run along x.
+  const std::string dir = fresh_dir("obstacle_through_item");
+  fs::create_directories(dir);
+  {
+    std::ofstream obj(dir + "/plate.obj");
+    obj << "v 0 -1 -0.5\nv 0 1 -0.5\nv 0 1 1\nv 0 -1 1\nf 1 2 3\nf 1 3 4\n";
+  }
+  const auto scene = [&](double plate_x) {
+    const json j = {{"name", "plate"},
+                    {"items", {{{"kind", "block"}, {"name", "left"}, {"fidelity", "rigid"}, {"x", -1.0}, {"params", {{"mass_kg", 10.0}}}},
+                               {{"kind", "block"}, {"name", "crate"}, {"fidelity", "rigid"}, {"x", 0.5}, {"params", {{"mass_kg", 10.0}}}}}},
+                    {"obstacles", {{{"file", "plate.obj"}, {"position", {plate_x, 0.0, 0.0}}}}},
+                    {"duration", 0.01}};
+    return parse_scene(write_json(dir + "/plate.json", j));
+  };
+  const SceneSpec through = scene(0.55);
+  Model model;
+  const std::vector<ItemInfo> items = build_scene(through, model);
+  const MeshObstacle plate = detail::scene_obstacle(through, 0);
+  const detail::ObstacleIntrusion in = detail::obstacle_intrusion(model, items.at(1), plate);
+  CHECK(in.depth == Approx(0.005));  // the plate cuts a centre line: the tube's half width
+  CHECK(in.point.x() == Approx(0.55));
+  CHECK(detail::obstacle_intrusion(model, items.at(0), plate).depth <= 0);
+  try {
+    check_scene_model(through);
+    FAIL("an obstacle through an item was accepted");
+  } catch (const InputError& e) {
+    CHECK(e.field() == "obstacles[0]");
+    CHECK_THAT(std::string(e.what()),
+               Catch::Contains("obstacles[0]: obstacle \"" + through.resolve("plate.obj") +
+                               "\" passes through item 'crate' (items[1]) at t = 0: 0.005 m into its member '") &&
+                   Catch::Contains("move the obstacle or the item"));
+  }
+  CHECK_THROWS_WITH(run_scene(through, quiet(dir + "/out")), Catch::Contains("passes through item 'crate'"));
+  // 50 mm clear of the 0.4 m block's side: runs.
+  CHECK_NOTHROW(check_scene_model(scene(0.5 + 0.25)));
+}
+
+TEST_CASE("a wall time is said in the unit that reads best", "[runner][forecast]") {
+  CHECK(detail::wall_time_text(0.4) == "0.4 s");
+  CHECK(detail::wall_time_text(45) == "45 s");
+  CHECK(detail::wall_time_text(150) == "2.5 min");
+  CHECK(detail::wall_time_text(9000) == "2.5 h");
+  CHECK(detail::wall_time_text(3 * 86400) == "3.0 days");
 }
 
 }  // namespace run_scene_tests

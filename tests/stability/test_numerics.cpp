@@ -16,9 +16,11 @@ namespace {
 
 // Configuration 2 at 100 % (pga 8 m/s^2) with the desk and chair markers, every item's penalty
 // alpha scaled by `penalty_factor` (item parameter alpha_kgf: it applies to the item's floor, wall
-// and item-item contacts, i.e. the scene's floor and item overrides for each item).
+// and item-item contacts, i.e. the scene's floor and item overrides for each item). These runs are
+// past the explicit contact's stable step on purpose: allow_coarse_dt (refused otherwise, below).
 SceneSpec configuration2(double dt, double duration, double penalty_factor) {
   SceneSpec s = synthetic_configuration(2, 8.0, dt, duration, Fidelity::full);
+  s.allow_coarse_dt = true;
   s.outputs.markers = configuration(2, "").outputs.markers;
   if (penalty_factor != 1.0) {
     Model scratch;
@@ -91,6 +93,25 @@ TEST_CASE("stability: a penalty 100 times stiffer", "[stability][numerics]") {
     report("penalty x100, dt = 0.1 ms", sum, "< " + num(bound), full ? "3 s" : "0.5 s");
     require_trusted(sum, bound);
   }
+}
+
+TEST_CASE("stability: a dt past twice the contact's stable step is refused before it runs", "[stability][numerics]") {
+  // dt = 5 ms is 3.9 times the estimate (1.28 ms, the chair's floor nodes): the runs below, asked for
+  // with allow_coarse_dt, slide the desk 0.06 m instead of 0.11 m in 3 s and lose 59 % of the ledger in 10 s.
+  SceneSpec s = configuration2(5e-3, 1.0, 1.0);
+  s.allow_coarse_dt = false;
+  try {
+    run_scene(s, quiet("dt5ms_refused"));
+    FAIL("dt = 5 ms ran");
+  } catch (const InputError& e) {
+    CHECK(e.field() == "dt");
+    CHECK_THAT(std::string(e.what()), Catch::Contains("0.005 s is 3.8") &&
+                                          Catch::Contains("times the explicit contact's stable step, estimated at 0.00128") &&
+                                          Catch::Contains("for item 'office_chair'"));
+  }
+  s.dt = 2.5e-3;  // within twice the estimate: runs
+  s.duration = 0.01;
+  CHECK(run_scene(s, quiet("dt2_5ms")).status == "completed");
 }
 
 TEST_CASE("stability: a time step five times larger (5 ms)", "[stability][numerics]") {

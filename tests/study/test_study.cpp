@@ -236,6 +236,21 @@ TEST_CASE("a realisation whose scene is refused is recorded as failed with its d
   CHECK(completed > 0);
 }
 
+TEST_CASE("a study says its size, and refuses a dt the contact cannot resolve, before its first run", "[study]") {
+  // Issue 51: a study of 2 000 000 runs started with no word of what it would take.
+  json j = block_study(3);  // 2 levels x 1 motion x 3 realisations, 0.5 s
+  j["compare"] = {{{"name", "base"}, {"scene", json::object()}}, {{"name", "half_steps"}, {"scene", {{"dt", 0.002}}}}};
+  CHECK(study_size_line(study_of(j)) ==
+        "study: 12 runs = 2 levels x 1 motion x 3 realisations x 2 variants; 250 to 500 steps a run, 4500 steps in all");
+  // The block's floor contact explicit under `stiff` (2.5 um under its weight): stable below 0.05 ms.
+  j["compare"][1] = {{"name", "coarse"}, {"scene", {{"dt", 0.01}, {"contact", {{"law", "stiff"}, {"implicit", "none"}}}}}};
+  CHECK_THROWS_WITH(study_of(j), Contains("study.json: compare[1].scene.dt: variant 'coarse': 0.01 s is ") &&
+                                     Contains(" times the explicit contact's stable step, estimated at ") &&
+                                     Contains("for item 'crate'") && Contains("or set allow_coarse_dt: true"));
+  j["compare"][1]["scene"]["allow_coarse_dt"] = true;  // asked for
+  CHECK_NOTHROW(study_of(j));
+}
+
 TEST_CASE("study files: round trip and named errors", "[study]") {
   const json j = block_study(2);
   const StudySpec s = study_of(j);

@@ -235,7 +235,7 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
   s.source = source;
   const ObjectReader r(j, "", source);
   r.allow_only({"name", "table", "walls", "obstacles", "items", "ground_motion", "contact", "integrator", "solver",
-                "refresh_every", "duration", "dt", "outputs"});
+                "refresh_every", "duration", "dt", "allow_coarse_dt", "outputs"});
   s.name = r.string("name", s.name);
 
   if (r.has("table")) {
@@ -360,6 +360,7 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
   r.positive("dt");
   if (r.has("dt")) r.require(s.dt >= SceneSpec::min_dt, "dt", "must be at least " + detail::fmt(SceneSpec::min_dt) + " s");
   if (r.has("dt")) r.require(s.dt <= s.duration, "dt", "must not exceed duration (" + detail::fmt(s.duration) + " s)");
+  s.allow_coarse_dt = r.boolean("allow_coarse_dt", s.allow_coarse_dt);
 
   if (r.has("outputs")) {
     const ObjectReader o = r.object("outputs");

@@ -4,6 +4,8 @@
 //   SceneSpec  parse_scene(const std::string& path)      a scene file read and checked (reader.hpp)
 //   RunSummary run_scene(const SceneSpec&, const RunOptions& = {}, const std::vector<RunObserver*>& extra = {})
 //   void check_run_start(const SceneSpec&, const RunOptions&)  what run_scene refuses before it builds the model
+//   void check_scene_model(const SceneSpec&)   what it refuses once the model is built: an obstacle through an
+//                                              item at t = 0, a dt too long for the explicit contact
 //
 // Linked with the compiled scene runner (CMake target furniture_fem::scene_compiled, which defines
 // FURNITURE_FEM_COMPILED_SCENE for its users), this header declares them and includes only the

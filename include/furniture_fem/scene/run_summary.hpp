@@ -29,6 +29,9 @@ struct RunOptions {
   std::string git_hash;                       // written to run.json; empty: unknown (null)
   bool write_files = true;                    // false: no folder, no files, no figures; the summary only
   bool progress = true;                       // progress bar on stderr
+  // The run's steps before the first and its projected wall time after a second of stepping, on
+  // stderr; without the progress bar only for a run projected past a minute (detail::RunForecast).
+  bool forecast = true;
   // Threads over the bodies of this run; 0: every hardware thread. A study running one realisation
   // per worker sets 1 (results are the same to the bit with any number).
   int threads = 0;

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "observer.hpp"
+#include "forecast.hpp"
 #include "observers.hpp"
 #include "results_folder.hpp"
 #include "run_checkpoint.hpp"
@@ -133,7 +134,55 @@ inline void check_motion_covers_run(const SceneSpec& spec, const RunOptions& opt
                        ", or set ground_motion.pad_after_end: true to run on with the table at rest after the motion");
 }
 
+// A dt longer than the ground motion's sample interval steps over the table's acceleration between
+// samples (dt = 1 s over a 10 s run took 10 steps and reported a slide; issue 51): an InputError naming
+// dt and the interval, unless allow_coarse_dt asks for it. A "points" motion has no interval.
+inline void check_motion_sampling(const SceneSpec& spec, const TableMotion& motion) {
+  if (spec.allow_coarse_dt || !motion.points.empty()) return;
+  double sample = motion.x.dt;
+  if (motion.has_y) sample = std::min(sample, motion.y.dt);
+  if (motion.has_z) sample = std::min(sample, motion.z.dt);
+  if (!(spec.dt > sample * (1 + 1e-9))) return;
+  const std::string what = spec.ground_motion.source == MotionSource::synthetic ? "the synthetic motion's" : "the record's";
+  throw InputError(spec.source, 0, "dt",
+                   detail::fmt(spec.dt) + " s is longer than the ground motion's sample interval, " +
+                       detail::fmt(sample) + " s (" + what +
+                       "): the run would step over the table's acceleration between its samples; use a dt of at most " +
+                       detail::fmt(sample) + " s, or set allow_coarse_dt: true to run it anyway");
+}
+
+// dt up to this many times the explicit contact's estimated stable step runs (the energy diagnoses
+// name the estimate if the run then creates or loses energy); beyond it the scene is refused
+// (check_contact_step). The estimate is conservative: measured margins in docs/scene/scene_file.md,
+// "A dt too coarse for the motion or the contact".
+inline constexpr double contact_step_error_factor = 2.0;
+
+// A dt at which the explicit contact cannot resolve an item's rocking or impacts (issue 51; at 2.66
+// times the estimate a cabinet slid four times as far) is an InputError naming dt, the estimate and its
+// item, unless allow_coarse_dt asks for it.
+inline void check_contact_step(const SceneSpec& spec, const ContactStepEstimate& est) {
+  if (spec.allow_coarse_dt || !(spec.dt > contact_step_error_factor * est.dt)) return;
+  throw InputError(spec.source, 0, "dt",
+                   detail::fmt(spec.dt) + " s is " + detail::fmt(spec.dt / est.dt) +
+                       " times the explicit contact's stable step, estimated at " + detail::fmt(est.dt) +
+                       " s for item '" + est.item +
+                       "' (2 sqrt(m / k) over its floor nodes, k the contact law's normal stiffness at rest): more than " +
+                       detail::fmt(contact_step_error_factor) +
+                       " times it, the contact cannot resolve the item's rocking or impacts; " + est.remedy() +
+                       ", or set allow_coarse_dt: true to run it anyway");
+}
+
 namespace detail {
+
+// The steps line of a run: how many, of what dt, to when, and the contact's stable step when explicit.
+inline std::string run_steps_line(const SceneSpec& spec, double t, double t_end, long done, long total,
+                                  const ContactStepEstimate& est) {
+  std::string line = "run: " + std::to_string(total - done) + " steps" + (done > 0 ? " left" : "") +
+                     " of dt = " + fmt(spec.dt) + " s from t = " + fmt(t) + " s to " + fmt(t_end) + " s";
+  if (std::isfinite(est.dt))
+    line += " (the explicit contact's stable step: " + fmt(est.dt) + " s, item '" + est.item + "')";
+  return line;
+}
 
 // When a run started: the steady clock for its wall time, the system clock for run.json.
 struct RunStart {
@@ -214,6 +263,7 @@ struct ComposedScene {
   SteppedSimulation& sim;
   double motion_scale = 1.0;  // SceneSimulation::motion_scale
   std::optional<SettledStart> settled_start;  // settle_at_rest's, for a settled start
+  ContactStepEstimate estimate;               // the explicit contact's stable step (check_contact_step)
 };
 
 // The state after the last step the observers saw: what the observers' end() see of a run that
@@ -339,9 +389,7 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
               row_interval_steps(opt, spec.dt),
               t_end - 0.5,
               sim.energy()};
-  const ContactStepEstimate estimate =
-      contact_step_estimate(sim, scene.model, scene.items, scene_body_contacts(spec, scene.model, scene.items),
-                            spec.contact.law);
+  const ContactStepEstimate& estimate = scene.estimate;
 
   RunSummary sum;
   sum.out_dir = run.out_dir;
@@ -387,6 +435,9 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
   auto last_checkpoint = std::chrono::steady_clock::now();
   const bool periodic = !run.out_dir.empty() && opt.checkpoint_every > 0;
   LastStepView last(sim, requests);
+  const long total_steps = std::lround(run.t_end / spec.dt);
+  RunForecast forecast(opt, sim.steps(), total_steps,
+                       run_steps_line(spec, sim.time(), run.t_end, sim.steps(), total_steps, estimate));
   try {
     while (sim.time() < run.t_end - 0.5 * spec.dt) {
       if (opt.stop && opt.stop->load()) {
@@ -420,6 +471,7 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
       }
       for (RunObserver* o : observers) o->after_step(run, step);
       last.commit();
+      forecast.after_step(sim.steps());
       if (periodic && std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() >=
                           opt.checkpoint_every) {
         checkpoint();
@@ -519,18 +571,30 @@ SettledStart settle_at_rest(const SceneSpec& spec, int threads, typename SceneSi
   return settled;
 }
 
+// The explicit contact's stable step of a built scene, checked against its dt (check_contact_step).
+template <class Law, class Solver>
+ContactStepEstimate checked_contact_step(const SceneSpec& spec, const SceneSimulation<Law, Solver>& scene) {
+  const ContactStepEstimate est =
+      contact_step_estimate(*scene.sim, *scene.model, scene.items,
+                            scene_body_contacts(spec, *scene.model, scene.items), spec.contact.law);
+  check_contact_step(spec, est);
+  return est;
+}
+
 // The only code instantiated per contact law and linear solver: building the simulation and its view.
 template <class Law, class Solver>
 RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt, const std::vector<RunObserver*>& extra,
                         const RunStart& t_start) {
   SceneSimulation<Law, Solver> scene(spec, 0, opt.threads);
+  const ContactStepEstimate estimate = checked_contact_step(spec, scene);  // before settling, too
   std::optional<SettledStart> settled;
   // A run going on from its checkpoint has its settled state there.
   if (spec.contact.start == ContactStart::settled && !opt.resume)
     settled = settle_at_rest<Law, Solver>(spec, opt.threads, *scene.sim, opt.stop);
   SimulationViewOf<typename SceneSimulation<Law, Solver>::Sim> view(*scene.sim);
   return run_observed(
-      spec, opt, {*scene.model, scene.items, scene.motion, scene.rigid_bodies, view, scene.motion_scale, settled}, extra,
+      spec, opt,
+      {*scene.model, scene.items, scene.motion, scene.rigid_bodies, view, scene.motion_scale, settled, estimate}, extra,
       t_start);
 }
 
@@ -560,13 +624,32 @@ RunSummary run_law(const SceneSpec& spec, const RunOptions& opt, const std::vect
 #ifndef FFEM_SCENE_DECLARED_ONLY
 // What run_scene refuses before it builds the model: the scene (validate), the output interval, the
 // run's length, and the ground motion, read and checked (a record's unit, window, filter and scale)
-// and set against the run's length. A study checks each of its scenes with it before its first run.
+// and set against the run's length and dt. A study checks each of its scenes with it before its first run.
 FFEM_SCENE_ENTRY_INLINE void check_run_start(const SceneSpec& spec, const RunOptions& opt) {
   validate(spec);
   row_interval_steps(opt, spec.dt);
   check_run_length(spec, opt);
   // The simulation reads the motion again: a record is small.
-  check_motion_covers_run(spec, opt, scene_table_motion(spec));
+  const TableMotion motion = scene_table_motion(spec);
+  check_motion_covers_run(spec, opt, motion);
+  check_motion_sampling(spec, motion);
+}
+
+// What run_scene refuses once the model is built, before the first step: an obstacle passing through
+// an item at t = 0 (detail::check_obstacles_clear) and a dt too long for the explicit contact
+// (check_contact_step). A study checks each variant's scene with it before its first run.
+FFEM_SCENE_ENTRY_INLINE void check_scene_model(const SceneSpec& spec) {
+  const auto build = [&]<class R>() {
+    using Law = typename R::law;
+    if (spec.solver != SolverKind::direct) {
+      const SceneSimulation<Law, ConjugateGradientSolver> scene(spec, 0, 1);
+      detail::checked_contact_step(spec, scene);
+    } else {
+      const SceneSimulation<Law, DirectLdltSolver> scene(spec, 0, 1);
+      detail::checked_contact_step(spec, scene);
+    }
+  };
+  if (!visit_scene_law(spec.contact.law, build)) throw InputError(spec.source, 0, "contact.law", "unknown contact law");
 }
 
 // Runs a scene with the standard observers (its outputs, as RunOptions asks) and then `extra`, in

@@ -293,6 +293,10 @@ struct SceneSpec {
   // The shortest time step a scene may ask for: a thousandth of the paper's (the stiffest penalties'
   // stable steps are around 0.1 ms). dt = 1e-300 was accepted and then "diverged; try a smaller dt".
   static constexpr double min_dt = 1e-6;
+  // A dt longer than the ground motion's sample interval or than contact_step_error_factor times the
+  // explicit contact's stable step is an error unless this is true (runner.hpp: check_motion_sampling,
+  // check_contact_step).
+  bool allow_coarse_dt = false;
   OutputSpec outputs;
   // Not part of the file: where it came from (error messages) and the folder relative paths are read from.
   std::string source = "<scene>";

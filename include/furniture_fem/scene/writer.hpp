@@ -124,6 +124,7 @@ inline nlohmann::json to_json(const SceneSpec& s) {
   j["refresh_every"] = s.refresh_every;
   j["duration"] = s.duration;
   j["dt"] = s.dt;
+  if (s.allow_coarse_dt) j["allow_coarse_dt"] = true;  // written when set: older scene.json unchanged
   json markers = json::array();
   for (const auto& m : s.outputs.markers) {
     if (m.point)

@@ -20,6 +20,7 @@
 #include <atomic>
 #include <charconv>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -32,6 +33,7 @@
 #include <vector>
 
 #include "../io/folder_lock.hpp"
+#include "../scene/forecast.hpp"
 #include "figures.hpp"
 #include "outcomes.hpp"
 #include "report.hpp"
@@ -295,14 +297,36 @@ class StudyFolder {
   }
 };
 
-// A progress line on stderr: runs done of all, failures, elapsed and estimated time left.
+// The study's size before its first run (issue 51): its runs as levels x motions x realisations x
+// variants, and the steps of a run and of them all (a variant may set its own dt or duration).
+inline std::string study_size_line(const StudySpec& s) {
+  long lo = 0, hi = 0;
+  double steps = 0;
+  for (int v = 0; v < s.num_variants(); ++v) {
+    const SceneSpec scene = study_scene(s, detail::study_scene_json(s, v, 0), "variant '" + s.variant_name(v) + "'");
+    const long n = std::lround(scene.duration / scene.dt);
+    lo = v == 0 ? n : std::min(lo, n), hi = std::max(hi, n);
+    steps += double(n) * double(s.num_realisations());
+  }
+  const auto count = [](long n, const char* what) { return std::to_string(n) + " " + what + (n == 1 ? "" : "s"); };
+  return "study: " + std::to_string(s.num_runs()) + " runs = " + count(s.num_levels(), "level") + " x " +
+         count(s.num_motions(), "motion") + " x " + count(s.realisations, "realisation") + " x " +
+         count(s.num_variants(), "variant") + "; " + (lo == hi ? std::to_string(lo) : std::to_string(lo) + " to " + std::to_string(hi)) +
+         " steps a run, " + detail::fmt(steps) + " steps in all";
+}
+
+// A progress line on stderr: runs done of all, failures, elapsed and estimated time left. At the first
+// result of this session, once, the projected wall time of the runs left (issue 51): the first run's time
+// over the runs `parallel` at once; without the progress line (quiet) only when past a minute.
 class StudyProgress {
  public:
-  StudyProgress(long total, long already_done, bool on) : total_(total), start_done_(already_done), on_(on) {}
+  StudyProgress(long total, long already_done, bool on, int parallel = 1)
+      : total_(total), start_done_(already_done), on_(on), parallel_(std::max(1, parallel)) {}
   void update(long done, long failed, bool last = false) {
-    if (!on_) return;
     std::lock_guard<std::mutex> lock(mutex_);
     const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (!forecast_said_ && done > start_done_) forecast(el);
+    if (!on_) return;
     if (!last && el - last_print_ < 0.5) return;
     last_print_ = el;
     const long new_done = done - start_done_, left = total_ - done;
@@ -315,9 +339,24 @@ class StudyProgress {
  private:
   long total_, start_done_;
   bool on_;
+  int parallel_;
+  bool forecast_said_ = false;
   std::mutex mutex_;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   double last_print_ = -1;
+
+  void forecast(double el) {
+    forecast_said_ = true;
+    const long runs = total_ - start_done_;
+    const double projected = el * std::ceil(double(runs) / std::min<double>(parallel_, double(runs)));
+    if (!on_ && !(projected > detail::quiet_forecast_seconds)) return;
+    const std::string text = "study: the first run took " + detail::wall_time_text(el) + " of wall time: about " +
+                             detail::wall_time_text(projected) + " for the " + std::to_string(runs) + " runs" +
+                             (start_done_ > 0 ? " left" : "") + " on " + std::to_string(parallel_) + " worker" +
+                             (parallel_ == 1 ? "" : "s");
+    std::fprintf(stderr, on_ ? "\r%-100s\n" : "%s\n", text.c_str());
+    std::fflush(stderr);
+  }
 };
 
 // Runs `pending` on `workers` threads, each taking the next run when it is free; records every result.
@@ -326,7 +365,8 @@ inline bool run_local(StudyFolder& folder, const std::vector<long>& pending, int
                       const std::atomic<bool>* stop, bool progress) {
   std::atomic<std::size_t> next{0};
   std::atomic<bool> stopped{false};
-  StudyProgress bar(folder.study().num_runs(), folder.done(), progress);
+  const int n = std::max(1, std::min<int>(workers, static_cast<int>(pending.size())));
+  StudyProgress bar(folder.study().num_runs(), folder.done(), progress, n);
   std::exception_ptr error;
   std::mutex error_mutex;
   const auto work = [&] {
@@ -345,7 +385,6 @@ inline bool run_local(StudyFolder& folder, const std::vector<long>& pending, int
     }
     if (stop && stop->load()) stopped = true;
   };
-  const int n = std::max(1, std::min<int>(workers, static_cast<int>(pending.size())));
   std::vector<std::thread> threads;
   for (int i = 1; i < n; ++i) threads.emplace_back(work);
   work();

@@ -301,6 +301,7 @@ inline StudySpec parse_study_json(const nlohmann::json& j, const std::string& so
     }
   // Then each scene as its runs will start, at every level: what a run would refuse fails here.
   detail::check_study_run_starts(s, r);
+  detail::check_study_models(s, r);
   return s;
 }
 

@@ -28,5 +28,6 @@ class RunObserver;
 SceneSpec parse_scene(const std::string& path);
 RunSummary run_scene(const SceneSpec& spec, const RunOptions& opt = {}, const std::vector<RunObserver*>& extra = {});
 void check_run_start(const SceneSpec& spec, const RunOptions& opt);
+void check_scene_model(const SceneSpec& spec);
 }  // namespace furniture_fem
 #endif

@@ -108,5 +108,21 @@ inline void check_study_run_starts(const StudySpec& s, const json_io::ObjectRead
     }
 }
 
+// Each variant's scene built as its runs build it (check_scene_model: an obstacle through an item at
+// t = 0, a dt too long for the explicit contact), with the first motion: neither depends on the motion
+// or the level. A realisation its perturbations push over (an item moved into an obstacle) is refused
+// at its own run.
+inline void check_study_models(const StudySpec& s, const json_io::ObjectReader& r) {
+  for (int v = 0; v < s.num_variants(); ++v) {
+    const std::string what = "variant '" + s.variant_name(v) + "'";
+    const SceneSpec spec = study_scene(s, study_scene_json(s, v, 0), what);
+    try {
+      check_scene_model(spec);
+    } catch (const InputError& e) {
+      r.fail(study_key_of(s, v, 0, 0, e.field()), what + ": " + refusal_text(e, spec.source));
+    }
+  }
+}
+
 }  // namespace detail
 }  // namespace furniture_fem
