@@ -76,6 +76,15 @@ inline ContactOverrides parse_contact_overrides(const ObjectReader& r, ContactLa
   return o;
 }
 
+// `v`, the value of `key`, within scene_reach of `centre` (each coordinate): "<what> must lie within
+// 10000 m of <from>" otherwise.
+inline void check_reach(const ObjectReader& r, std::string_view key, const Vec3& v, const Vec3& centre,
+                        const std::string& what, const std::string& from) {
+  if ((v - centre).cwiseAbs().maxCoeff() <= scene_reach) return;
+  r.fail(r.path(key), "out of reach (got [" + fmt(v.x()) + ", " + fmt(v.y()) + ", " + fmt(v.z()) + "]); " + what +
+                          " must lie within " + fmt(scene_reach) + " m of " + from);
+}
+
 inline ItemSpec parse_item(const json& v, const std::string& path, const std::string& source) {
   ObjectReader r(v, path, source);
   r.allow_only({"name", "kind", "x", "y", "yaw_deg", "fidelity", "params"});
@@ -245,8 +254,11 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
     s.table.size_x = t.number("size_x", s.table.size_x);
     s.table.size_y = t.number("size_y", s.table.size_y);
     s.table.floor_z = t.number("floor_z", s.table.floor_z);
-    t.positive("size_x");
-    t.positive("size_y");
+    for (auto key : {"size_x", "size_y"}) {
+      t.positive(key);
+      t.in_range(key, 0, 2 * scene_reach);
+    }
+    t.in_range("floor_z", -scene_reach, scene_reach);
   }
 
   s.walls = default_walls(s.table);
@@ -258,6 +270,7 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
       WallSpec wall;
       wall.name = w.string("name", "wall_" + std::to_string(s.walls.size() + 1));
       wall.point = w.vec3("point", wall.point);
+      detail::check_reach(w, "point", wall.point, Vec3(0, 0, s.table.floor_z), "a wall", "the table's centre");
       wall.normal = w.vec3("normal", wall.normal);
       if (std::abs(wall.normal.z()) > 1e-12 || wall.normal.norm() < 1e-12)
         w.fail(w.path("normal"), "must be a non-zero horizontal vector (walls are vertical), got [" +
@@ -267,8 +280,10 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
       // read / to_json round trip.
       wall.height = w.number("height", wall.height);
       wall.width = w.number("width", wall.width);
-      w.positive("height");
-      w.positive("width");
+      for (auto key : {"height", "width"}) {
+        w.positive(key);
+        w.in_range(key, 0, 2 * scene_reach);
+      }
       s.walls.push_back(wall);
     });
   }
@@ -389,6 +404,7 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
           mr.fail(mr.path("point"), "give exactly one of \"marker\" (a builder marker) and \"point\" (item frame, m)");
         m.marker = mr.string("marker", "");
         m.point = mr.optional_vec3("point");
+        if (m.point) detail::check_reach(mr, "point", *m.point, Vec3::Zero(), "a marker's point", "its item's origin");
       }
       s.outputs.markers.push_back(m);
     });
