@@ -201,7 +201,10 @@ int run(const CommandLine& cl, RunOptions opt) {
   opt.stop = &g_stop;
   opt.git_hash = git_hash;
   std::cerr << "furniture_fem " << version_string << ": " << spec.name << "\n";
-  return report(spec, run_scene(spec, opt));
+  const RunSummary s = run_scene(spec, opt);
+  // Stopped once the records were read, before the model was built: no results folder.
+  if (s.status == "stopped" && s.out_dir.empty()) return interrupted("while reading the ground motion");
+  return report(spec, s);
 }
 }  // namespace
 
