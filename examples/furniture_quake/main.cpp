@@ -26,6 +26,7 @@
 #include <iostream>
 #include <string>
 
+#include "../common/folder_option.hpp"
 #include "../common/interrupt.hpp"
 
 namespace {
@@ -105,7 +106,7 @@ void define_options(CLI::App& app, CommandLine& cl, RunOptions& opt) {
                                                   "configuration 3, built-in synthetic 3-D motion, 10 s");
   scene->type_name("FILE");
   auto* out = app.add_option("--out", cl.out_dir, "results folder (default: the scene's outputs.folder)");
-  out->type_name("DIR");
+  out->type_name("DIR")->check(ffem_examples::folder_name("leave --out out for the scene's outputs.folder"));
   app.add_option("--duration", cl.duration, "simulated time in s, instead of the scene's")
       ->type_name("S")->check(seconds());
   app.add_option("--output-interval", opt.output_interval, "history rows every S s of simulated time")
@@ -122,11 +123,13 @@ void define_options(CLI::App& app, CommandLine& cl, RunOptions& opt) {
       "--resume", [&cl, &opt](const std::string& dir) { cl.out_dir = dir, opt.resume = true; },
       "go on with the stopped or killed run in results folder DIR from its checkpoint (give the same scene and "
       "options as that run)");
-  resume->type_name("DIR")->excludes(out)->excludes(overwrite);
+  resume->type_name("DIR")->check(ffem_examples::folder_name("name the stopped run's results folder"))
+      ->excludes(out)->excludes(overwrite);
   auto* config = app.add_option("--config", cl.config, "the paper's configuration K (1, 2, 3) under the JMA-Kobe records");
   config->type_name("K")->check(configuration_number())->excludes(scene);
   app.add_option("--records", cl.records, "folder of the JMA-Kobe records for --config (default: $FFEM_RECORDS if set)")
-      ->type_name("DIR")->capture_default_str()->needs(config);
+      ->type_name("DIR")->check(ffem_examples::folder_name("leave --records out for the default"))
+      ->capture_default_str()->needs(config);
   app.footer("Exit codes: 0 done, 1 bad input (a scene or record file), 2 usage (a bad command line),\n"
              "3 diverged, 130 interrupted (Ctrl-C or SIGTERM; a second one leaves at once).");
 }
@@ -198,7 +201,10 @@ int run(const CommandLine& cl, RunOptions opt) {
   opt.stop = &g_stop;
   opt.git_hash = git_hash;
   std::cerr << "furniture_fem " << version_string << ": " << spec.name << "\n";
-  return report(spec, run_scene(spec, opt));
+  const RunSummary s = run_scene(spec, opt);
+  // Stopped once the records were read, before the model was built: no results folder.
+  if (s.status == "stopped" && s.out_dir.empty()) return interrupted("while reading the ground motion");
+  return report(spec, s);
 }
 }  // namespace
 

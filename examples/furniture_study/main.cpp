@@ -21,6 +21,7 @@
 #include <string>
 #include <thread>
 
+#include "../common/folder_option.hpp"
 #include "../common/interrupt.hpp"
 #ifdef FFEM_WITH_MPI
 #include "mpi_handout.hpp"
@@ -54,7 +55,7 @@ void define_options(CLI::App& app, CommandLine& cl) {
                                               "under MPI: one per rank)")
       ->type_name("N")->check(CLI::Range(1, 4096));
   app.add_option("--out", cl.out_dir, "results folder (default: study_<name>); with --scene-of: the scene file to write")
-      ->type_name("DIR");
+      ->type_name("DIR")->check(ffem_examples::folder_name("leave --out out for the default"));
   app.add_flag("--resume", cl.opt.resume, "continue a stopped or killed study in the folder, skipping finished runs");
   app.add_flag("--overwrite", cl.opt.overwrite, "replace a previous study's results in the folder (other files are kept)");
   app.add_flag_callback("--quiet", [&cl] { cl.opt.progress = false; }, "no progress line");

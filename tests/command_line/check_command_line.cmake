@@ -59,6 +59,17 @@ check(2 "usage error: .*--config.*scene|usage error: .*scene.*--config" scene.js
 check(2 "usage error: --records.*--config" --records somewhere)
 check(2 "usage error: .*second.json" first.json second.json)
 
+# A folder named empty or with a control character: a usage error naming the option, not the default
+# folder (results/default, which the run without a scene would write).
+foreach(args "--out ''" "--resume ''" "--out \"$(printf 'a\\nb')\"" "--config 3 --records ''")
+  execute_process(COMMAND sh -c "\"$0\" --duration 0.05 --quiet --no-figures ${args}" ${PROGRAM}
+                  WORKING_DIRECTORY ${WORK_DIR} TIMEOUT 120 RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  verdict(2 "usage error: --(out|resume|records): must not (be empty|hold control characters)" "${out}${err}" "${args}")
+endforeach()
+if(EXISTS ${WORK_DIR}/results)
+  fail("a folder option refused, yet ${WORK_DIR}/results was written")
+endif()
+
 # Bad input: exit 1, the file named.
 check(1 "error: .*no_such_scene.json" no_such_scene.json)
 # A missing record of the paper's configurations says where to get it; FFEM_RECORDS is the default folder.

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -73,6 +74,15 @@ inline ContactOverrides parse_contact_overrides(const ObjectReader& r, ContactLa
     read_range(r, p.key, p.lo, p.hi, p.lo_exclusive);
   }
   return o;
+}
+
+// `v`, the value of `key`, within scene_reach of `centre` (each coordinate): "<what> must lie within
+// 10000 m of <from>" otherwise.
+inline void check_reach(const ObjectReader& r, std::string_view key, const Vec3& v, const Vec3& centre,
+                        const std::string& what, const std::string& from) {
+  if ((v - centre).cwiseAbs().maxCoeff() <= scene_reach) return;
+  r.fail(r.path(key), "out of reach (got [" + fmt(v.x()) + ", " + fmt(v.y()) + ", " + fmt(v.z()) + "]); " + what +
+                          " must lie within " + fmt(scene_reach) + " m of " + from);
 }
 
 inline ItemSpec parse_item(const json& v, const std::string& path, const std::string& source) {
@@ -244,8 +254,11 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
     s.table.size_x = t.number("size_x", s.table.size_x);
     s.table.size_y = t.number("size_y", s.table.size_y);
     s.table.floor_z = t.number("floor_z", s.table.floor_z);
-    t.positive("size_x");
-    t.positive("size_y");
+    for (auto key : {"size_x", "size_y"}) {
+      t.positive(key);
+      t.in_range(key, 0, 2 * scene_reach);
+    }
+    t.in_range("floor_z", -scene_reach, scene_reach);
   }
 
   s.walls = default_walls(s.table);
@@ -257,6 +270,7 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
       WallSpec wall;
       wall.name = w.string("name", "wall_" + std::to_string(s.walls.size() + 1));
       wall.point = w.vec3("point", wall.point);
+      detail::check_reach(w, "point", wall.point, Vec3(0, 0, s.table.floor_z), "a wall", "the table's centre");
       wall.normal = w.vec3("normal", wall.normal);
       if (std::abs(wall.normal.z()) > 1e-12 || wall.normal.norm() < 1e-12)
         w.fail(w.path("normal"), "must be a non-zero horizontal vector (walls are vertical), got [" +
@@ -266,8 +280,10 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
       // read / to_json round trip.
       wall.height = w.number("height", wall.height);
       wall.width = w.number("width", wall.width);
-      w.positive("height");
-      w.positive("width");
+      for (auto key : {"height", "width"}) {
+        w.positive(key);
+        w.in_range(key, 0, 2 * scene_reach);
+      }
       s.walls.push_back(wall);
     });
   }
@@ -389,6 +405,7 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
           mr.fail(mr.path("point"), "give exactly one of \"marker\" (a builder marker) and \"point\" (item frame, m)");
         m.marker = mr.string("marker", "");
         m.point = mr.optional_vec3("point");
+        if (m.point) detail::check_reach(mr, "point", *m.point, Vec3::Zero(), "a marker's point", "its item's origin");
       }
       s.outputs.markers.push_back(m);
     });
@@ -461,11 +478,107 @@ inline std::pair<long, std::string> structure_problem(const std::string& text) {
   }
   return {0, {}};
 }
+
+// The line of byte `at` of `text` (1 for the first).
+inline long line_at(const std::string& text, std::size_t at) {
+  return 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(std::min(at, text.size())), '\n');
+}
+
+// The key path ("items[0].x") at which the JSON library stops, from its SAX events: its own messages
+// name only the byte, and an out-of-range number (1e400) not even that.
+class KeyPathAtError final : public nlohmann::json_sax<nlohmann::json> {
+ public:
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t&) override { return value(); }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override { return open(true); }
+  bool start_array(std::size_t) override { return open(false); }
+  bool end_object() override { return close(); }
+  bool end_array() override { return close(); }
+  bool key(string_t& k) override {
+    levels_.back().key = k;
+    levels_.back().done = false;
+    return true;
+  }
+  bool parse_error(std::size_t position, const std::string& token, const nlohmann::detail::exception& e) override {
+    const bool overflow = e.id == 406;
+    if (overflow) begin();  // the number is a value being read: in an array, the next element
+    const bool after = !overflow && (levels_.empty() ? top_done_ : levels_.back().done);
+    error = {position, token, e.what(), overflow, key_path_here(), after};
+    return false;
+  }
+
+  struct Error {
+    std::size_t position = 0;  // bytes read when the library stopped
+    std::string token, what;
+    bool overflow = false;  // a number beyond a double's range (the library's out_of_range 406)
+    std::string path;       // the key or element being read, or the last one read when `after`
+    bool after = false;     // the value at `path` was whole: the problem follows it
+  };
+  Error error;
+
+ private:
+  struct Level {
+    bool object = false;
+    std::optional<std::string> key;  // none before the object's first key
+    std::size_t index = 0;
+    bool done = false;  // the value of `key` (the element `index`) is whole
+  };
+  std::vector<Level> levels_;
+  bool top_done_ = false;
+
+  void begin() {  // a value starts: in an array, after a whole element, the next element
+    if (levels_.empty() || levels_.back().object || !levels_.back().done) return;
+    ++levels_.back().index;
+    levels_.back().done = false;
+  }
+  void done() { (levels_.empty() ? top_done_ : levels_.back().done) = true; }
+  bool value() {
+    begin();
+    done();
+    return true;
+  }
+  bool open(bool object) {
+    begin();
+    levels_.push_back({object, {}, 0, false});
+    return true;
+  }
+  bool close() {
+    levels_.pop_back();
+    done();
+    return true;
+  }
+  std::string key_path_here() const {
+    std::string path;
+    for (const Level& l : levels_) {
+      if (l.object && !l.key) break;
+      path = l.object ? json_io::key_path(path, *l.key) : json_io::index_path(path, l.index);
+    }
+    return path;
+  }
+};
+
+// The InputError for a text the JSON library refuses, naming the key path where it stopped.
+[[noreturn]] inline void throw_json_error(const std::string& path, const std::string& text) {
+  KeyPathAtError where;
+  nlohmann::json::sax_parse(text, &where);
+  const KeyPathAtError::Error& e = where.error;
+  const long line = line_at(text, e.position);
+  if (e.overflow)
+    throw InputError(path, line, e.path.empty() ? "(top level)" : e.path,
+                     "number out of range (got " + e.token + "): a number's magnitude must be below 1.8e308");
+  const std::string place = !e.after ? "" : e.path.empty() ? " after the top-level value" : " after its value";
+  throw InputError(path, line, e.path, "not valid JSON" + place + ": " + e.what);
+}
 }  // namespace detail
 
 // Reads a JSON input file (a scene, a study; `what` names it in messages) with the checks every input
 // file gets: at most 64 MiB, nesting at most 64 deep, syntax errors and out-of-range numbers reported
-// with their line.
+// with their line and key path, nothing after the top-level value (the library stops at a NUL byte).
 inline nlohmann::json read_json_file(const std::string& path, const std::string& what = "scene") {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "", "cannot open the " + what + " file");
@@ -479,23 +592,14 @@ inline nlohmann::json read_json_file(const std::string& path, const std::string&
   buffer << in.rdbuf();
   const std::string text = buffer.str();
   if (const auto [line, problem] = detail::structure_problem(text); line > 0) throw InputError(path, line, "", problem);
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    const auto upto = text.begin() + static_cast<std::ptrdiff_t>(std::min(text.size(), static_cast<size_t>(e.byte)));
-    const long line = 1 + std::count(text.begin(), upto, '\n');
-    throw InputError(path, line, "", std::string("not valid JSON: ") + e.what());
-  } catch (const nlohmann::json::exception& e) {  // e.g. a number out of range (1e400): no position given
-    // The line of the number the library quotes ("number overflow parsing '1e400'"), found in the text.
-    const std::string what_text = e.what();
-    const auto q = what_text.find("parsing '");
-    const auto q_end = q == std::string::npos ? q : what_text.find('\'', q + 9);
-    long line = 0;
-    if (q_end != std::string::npos && q_end > q + 9)
-      if (const auto at = text.find(what_text.substr(q + 9, q_end - q - 9)); at != std::string::npos)
-        line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n');
-    throw InputError(path, line, "", "not valid JSON: " + what_text);
-  }
+  nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+  if (j.is_discarded()) detail::throw_json_error(path, text);
+  // A parse that succeeded read up to a NUL byte at most: one here is after the top-level value.
+  if (const auto nul = text.find('\0'); nul != std::string::npos)
+    throw InputError(path, detail::line_at(text, nul), "",
+                     "not valid JSON after the top-level value: a NUL byte (byte " + std::to_string(nul + 1) +
+                         " of " + std::to_string(text.size()) + "); a JSON file holds text only");
+  return j;
 }
 
 // Reads a scene file (read_json_file's checks); relative paths inside the file are taken relative to

@@ -156,7 +156,7 @@ struct RunSummary {
   std::vector<ItemFinalState> items;
   std::vector<SectionForcePeak> section_peaks;  // one per outputs.sectional_forces request
   EnergyVerdict energy;                         // the energy ledger's verdict
-  std::string out_dir;                          // empty when the run wrote no files
+  std::string out_dir;  // empty when the run wrote no files (write_files false, or stopped before it was built)
   // The factor ground_motion.scale_to applied to the record (1 without a target); `level` multiplies after.
   double ground_motion_scale = 1.0;
   std::optional<SettledStart> settled_start;  // contact.start "settled": how the items settled

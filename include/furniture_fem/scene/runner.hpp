@@ -581,6 +581,15 @@ ContactStepEstimate checked_contact_step(const SceneSpec& spec, const SceneSimul
   return est;
 }
 
+// The summary of a run stopped before its model was built: no steps, no results folder (out_dir empty).
+inline RunSummary stopped_before_start(const SceneSpec& spec, const RunOptions& opt) {
+  RunSummary sum;
+  sum.status = "stopped";
+  sum.duration = opt.duration.value_or(spec.duration);
+  sum.diagnosis = "stopped by the user (interrupt) while the ground motion was read: nothing run, nothing written";
+  return sum;
+}
+
 // The only code instantiated per contact law and linear solver: building the simulation and its view.
 template <class Law, class Solver>
 RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt, const std::vector<RunObserver*>& extra,
@@ -654,10 +663,15 @@ FFEM_SCENE_ENTRY_INLINE void check_scene_model(const SceneSpec& spec) {
 
 // Runs a scene with the standard observers (its outputs, as RunOptions asks) and then `extra`, in
 // that order; returns its summary. RunOptions::write_files = false runs it without writing anything
-// (the summary still holds the final states and the section peaks).
+// (the summary still holds the final states and the section peaks). A stop request (RunOptions::stop)
+// already made when the ground motion has been read returns "stopped" with nothing built or written;
+// one made later stops the run before its next step, its outputs written.
 FFEM_SCENE_ENTRY_INLINE RunSummary run_scene(const SceneSpec& spec, const RunOptions& opt = {}, const std::vector<RunObserver*>& extra = {}) {
   const detail::RunStart t_start;
   check_run_start(spec, opt);
+  // A stop request seen once the scene's records are read (Ctrl-C while a long record was read): nothing
+  // run, nothing written, as when stopped while the scene was read (docs/command_line.md).
+  if (opt.stop && opt.stop->load()) return detail::stopped_before_start(spec, opt);
   // A results folder that must not be written into fails before the model is built, too (the run takes
   // its lock once built: detail::run_observed).
   if (const std::string out = results_folder_of(spec, opt); !out.empty()) {

@@ -237,7 +237,7 @@ namespace detail {
 // is metres across, and far beyond it the triangles' areas and the contact distances are lost to
 // rounding (a mesh with a coordinate of 1e166, a scale of 1e300 or a position of 1e300 ran or failed
 // with a message naming no key; issue 13).
-inline constexpr double obstacle_reach = 1e4;
+inline constexpr double obstacle_reach = scene_reach;
 
 // The mesh of obstacles[i], placed (ObstacleSpec: file units times `scale`, turned by `yaw_deg` about z,
 // the file's origin moved to `position`). A vertex beyond obstacle_reach of the table's centre is an

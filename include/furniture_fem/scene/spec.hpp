@@ -22,6 +22,11 @@ namespace furniture_fem {
 // The scene description
 // ---------------------------------------------------------------------------------------------------
 
+// How far a scene reaches from the table's centre (m, each coordinate): the floor's height, the table's
+// half-size, walls, obstacles and marker points. A room is metres across; far beyond it lengths and
+// areas are lost to rounding (a floor_z of 1e300 failed as a "zero-length member").
+inline constexpr double scene_reach = 1e4;
+
 // The shake table: a size_x x size_y rectangle centred on the origin, its floor at z = floor_z.
 struct TableSpec {
   double size_x = 4.0, size_y = 4.0;  // m (the paper's table: 4 m x 4 m)
