@@ -9,6 +9,7 @@
 #include <furniture_fem/scene/scene_runner.hpp>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <bit>
 #include <chrono>
@@ -18,6 +19,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <regex>
 #include <set>
@@ -694,6 +696,50 @@ TEST_CASE("final states: an item on a slippery floor under a strong pulse slides
     const double g = 9.80665;
     CHECK(on_lower_from_upper / n_pair == Approx(-21.3 * g).epsilon(0.03));
     CHECK(on_lower_from_floor / n_floor == Approx((21.3 + 28.8) * g).epsilon(0.03));
+  }
+  SECTION("stacked, item pairs as rows: contact_pairs.csv holds the pair columns' non-zero values") {
+    // outputs.contact_pairs "rows" (the default above 100 bodies, where n (n - 1) / 2 pairs of columns
+    // no longer fit): one row per touching pair and history row, the same means as the columns.
+    json j = {{"name", "stacked cabinets at rest"},
+              {"items", {{{"kind", "separated_cabinets"}, {"name", "pair"}, {"fidelity", "coarse"}}}},
+              {"ground_motion", {{"source", "synthetic"}, {"level", 0.0}}},
+              {"duration", 0.3},
+              {"outputs", {{"figures", false}}}};
+    REQUIRE(run_scene(parse_scene(write_json(dir + "/cols.json", j)), quiet(dir + "/cols_out")).status == "completed");
+    j["outputs"]["contact_pairs"] = "rows";
+    REQUIRE(run_scene(parse_scene(write_json(dir + "/rows.json", j)), quiet(dir + "/rows_out")).status == "completed");
+    const CsvTable cols = read_csv(dir + "/cols_out/contact_forces.csv");
+    const CsvTable rows = read_csv(dir + "/rows_out/contact_forces.csv");
+    CHECK_FALSE(rows.has("pair/lower|pair/upper_fz"));
+    CHECK(rows.column("pair/lower|floor_fz") == cols.column("pair/lower|floor_fz"));
+    std::ifstream in(dir + "/rows_out/contact_pairs.csv");
+    std::string line;
+    std::getline(in, line);
+    CHECK(line == "t,item_a,item_b,fx,fy,fz");
+    std::map<double, std::array<double, 3>> by_t;
+    while (std::getline(in, line)) {
+      std::vector<std::string> cell;
+      std::stringstream ls(line);
+      for (std::string c; std::getline(ls, c, ',');) cell.push_back(c);
+      REQUIRE(cell.size() == 6);
+      CHECK(cell[1] == "pair/lower");
+      CHECK(cell[2] == "pair/upper");
+      by_t[std::stod(cell[0])] = {std::stod(cell[3]), std::stod(cell[4]), std::stod(cell[5])};
+    }
+    const auto& t = cols.column("t");
+    int touching = 0;
+    for (std::size_t r = 0; r < cols.rows(); ++r) {
+      const std::array<double, 3> f{cols.column("pair/lower|pair/upper_fx")[r], cols.column("pair/lower|pair/upper_fy")[r],
+                                    cols.column("pair/lower|pair/upper_fz")[r]};
+      const bool zero = f[0] == 0 && f[1] == 0 && f[2] == 0;
+      CHECK(by_t.count(t[r]) == (zero ? 0u : 1u));
+      if (!zero && by_t.count(t[r])) {
+        CHECK(by_t[t[r]] == f);
+        ++touching;
+      }
+    }
+    CHECK(touching > 10);
+    CHECK(touching == static_cast<int>(by_t.size()));
   }
   SECTION("standing") {
     json j = small_scene_json(dir + "/stand_out");

@@ -141,8 +141,10 @@ inline nlohmann::json to_json(const SceneSpec& s) {
                   {"markers", markers},
                   {"sectional_forces", forces},
                   {"vtu_every", s.outputs.vtu_every},
-                  {"figures", s.outputs.figures},
-                  {"contact_pairs", enum_name(detail::contact_pair_output_names, s.outputs.contact_pairs)}};
+                  {"figures", s.outputs.figures}};
+  // Written only when set: scene files and checkpoints written before the key existed stay the same.
+  if (s.outputs.contact_pairs != ContactPairOutput::automatic)
+    j["outputs"]["contact_pairs"] = enum_name(detail::contact_pair_output_names, s.outputs.contact_pairs);
   return j;
 }
 

@@ -159,8 +159,10 @@ inline void RoomContact::update_hull_pairs(const Model& model) {
   if (!hulls_on_) return;
   const auto points = std::max<long long>(model.num_nodes(), static_cast<long long>(surface_points_.size()));
   if (points >= hull_id_limit || static_cast<long long>(nb) >= hull_id_limit)
-    throw ModelError("RoomContact: rigid pairs by their hulls name their points below 2^20; this model has " +
-                     std::to_string(points) + " points");
+    throw ModelError("RoomContact: rigid pairs by their hulls (scene key contact.rigid_pairs, \"hulls\") number "
+                     "their points and bodies below 2^20 = 1048576; this model has " + std::to_string(points) +
+                     " points in " + std::to_string(nb) + " bodies: use contact.rigid_pairs \"members\", or fewer "
+                     "or coarser items");
   for (std::size_t b = 0; b < nb; ++b)
     for (int n : model.body(static_cast<int>(b)).nodes)
       if (std::isfinite(half_width_[n])) hull_half_width_[b] = std::max(hull_half_width_[b], half_width_[n]);

@@ -17,6 +17,9 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::evaluate_ele
 template <class Element, class Integrator, class LinearSolver, class Contact>
 inline void Simulation<Element, Integrator, LinearSolver, Contact>::evaluate_body(int b, bool assemble) {
   auto& bs = systems_[b];
+  // A flexible body's matrix is made at its first assembly (before start() too: update_internal_forces);
+  // only this body's own members are touched, so the parallel sweep may do it.
+  if (assemble && !bs.rigid) prepare_matrix(b);
   double* Kv = bs.K.valuePtr();
   if (assemble) std::fill(Kv, Kv + bs.K.nonZeros(), 0.0);
   // A rigid body's internal forces are zero from the start and never written: no pass to clear them.
