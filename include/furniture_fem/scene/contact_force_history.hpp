@@ -43,6 +43,7 @@ class ContactForceHistory : public RunObserver {
     return out;
   }
   void begin(const RunView& run) override {
+    pair_rows_ = item_pairs_as_rows(run);
     const std::vector<std::string> cols = columns(run);
     row_.assign(cols.size(), 0.0);
     csv_.emplace(path(run), cols);
@@ -65,6 +66,7 @@ class ContactForceHistory : public RunObserver {
     if (pair_csv_) w(pair_csv_->position(), pair_sums_);
   }
   void resume(const RunView& run, StateReader& r) override {
+    pair_rows_ = item_pairs_as_rows(run);
     CsvWriter::Position at;
     r(at, row_, steps_);
     csv_.emplace(path(run), columns(run), at);
@@ -86,8 +88,10 @@ class ContactForceHistory : public RunObserver {
       column_.emplace(pair, cols.size());
       for (const char* c : {"_fx", "_fy", "_fz"}) cols.push_back(prefix + c);
     }
-    pair_rows_ = !run.spec.outputs.pair_columns(run.model.num_bodies());
     return cols;
+  }
+  static bool item_pairs_as_rows(const RunView& run) {
+    return !run.spec.outputs.pair_columns(run.model.num_bodies());
   }
   std::optional<CsvWriter> csv_, pair_csv_;
   std::map<std::pair<int, int>, std::size_t> column_;  // the pair's _fx column
