@@ -351,12 +351,12 @@ TEST_CASE("a rigid body stepped on its affine fields follows the nodal scheme", 
     // -- fields --
     detail::RigidStepFields p = f;
     p.vn = f.v, p.an = f.a, p.wn = f.w, p.alphan = f.alpha;
-    const auto translation = stepper.update(AffineField{}, p.vn, p.an);
-    const auto rotation = stepper.update<Vector3d>(Vector3d::Zero(), p.wn, p.alphan);
-    p.a = translation.acceleration;
-    p.v = translation.velocity;
-    p.alpha = rotation.acceleration;
-    p.w = rotation.velocity;
+    const auto predicted = stepper.update(AffineField{}, p.vn, p.an);
+    const auto predicted_turn = stepper.update<Vector3d>(Vector3d::Zero(), p.wn, p.alphan);
+    p.a = predicted.acceleration;
+    p.v = predicted.velocity;
+    p.alpha = predicted_turn.acceleration;
+    p.w = predicted_turn.velocity;
     const auto res = detail::rigid_reduced_residual(mm, Qtot, p, stepper, c, g1, g0, {});
     Eigen::Matrix<double, 6, 6> Af = detail::rigid_mass_matrix(mm, Qtot, mf);
     const V6 dqf = Af.ldlt().solve(res.R);
