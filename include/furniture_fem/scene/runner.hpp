@@ -388,7 +388,8 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
               t_end,
               row_interval_steps(opt, spec.dt),
               t_end - 0.5,
-              sim.energy()};
+              sim.energy(),
+              TableMotionIntegrator{}};
   const ContactStepEstimate& estimate = scene.estimate;
 
   RunSummary sum;
