@@ -169,9 +169,10 @@ class AlphaStepper {
 
 // What the Simulation asks of a stepper (AlphaStepper is the reference). The vector type of the
 // checks is a node's six DOFs; the Simulation also applies update, contact_velocity and the
-// balance points to 3-vectors and to a rigid body's affine fields.
+// balance points to 3-vectors and to a rigid body's affine fields. Copyable: the Simulation assigns a
+// new one when the step length changes.
 template <class S>
-concept Stepper = std::copy_constructible<S> &&
+concept Stepper = std::copyable<S> &&
     requires(const S& s, const Eigen::Matrix<double, 6, 1>& x, double c, StepSystemArchetype& system) {
       { s.dt() } -> std::same_as<double>;
       { s.stiffness_factor() } -> std::same_as<double>;
