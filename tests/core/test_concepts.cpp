@@ -64,6 +64,7 @@ struct BossakAlpha {
   IntegratorCoefficients coefficients() const {
     return {alpha, 0.0, 0.25 * (1 - alpha) * (1 - alpha), 0.5 - alpha};  // alpha_m, alpha_f, beta, gamma
   }
+  AlphaStepper stepper(double dt) const { return {coefficients(), mode, dt}; }  // the family's stepper
   std::string name() const { return "Bossak alpha " + std::to_string(alpha); }
 };
 static_assert(IntegratorPolicy<BossakAlpha>);

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <vector>
 
 using namespace furniture_fem;
@@ -74,7 +75,120 @@ double fitted_spectral_radius3(const std::vector<double>& x) {
   return companion.eigenvalues().cwiseAbs().maxCoeff();
 }
 
+// HHT-alpha in Hilber's own form, an integrator of its own through the stepper API (not AlphaStepper):
+//   M a_{n+1} + (1 + alpha) (C v_{n+1} + K u_{n+1}) - alpha (C v_n + K u_n) = (1 + alpha) f_{n+1} - alpha f_n
+// with Newmark's update, beta = (1 - alpha)^2 / 4 and gamma = 1/2 - alpha, iterated to equilibrium.
+class HilberStepper {
+ public:
+  HilberStepper(double alpha, double dt)
+      : alpha_(alpha), beta_(0.25 * (1 - alpha) * (1 - alpha)), gamma_(0.5 - alpha), dt_(checked_step_length(dt, "HHT")) {}
+  double dt() const { return dt_; }
+  double stiffness_factor() const { return 1 + alpha_; }
+  double velocity_factor() const { return gamma_ / (beta_ * dt_); }
+  double mass_factor(double c) const { return 1 / (beta_ * dt_ * dt_) + (1 + alpha_) * velocity_factor() * c; }
+  template <class V>
+  struct Rates {
+    V acceleration, velocity;
+  };
+  template <class V>
+  Rates<V> update(const V& du, const V& vn, const V& an) const {
+    const V a = (du - dt_ * vn - dt_ * dt_ * (0.5 - beta_) * an) / (beta_ * dt_ * dt_);
+    return {a, vn + dt_ * ((1 - gamma_) * an + gamma_ * a)};
+  }
+  template <class V>
+  V contact_velocity(const V& vn, const V& an) const {
+    return vn + dt_ * an;
+  }
+  template <class V>
+  V at_inertia_point(const V& x1, const V&) const {
+    return x1;
+  }
+  template <class V>
+  V at_force_point(const V& x1, const V& x0) const {
+    return (1 + alpha_) * x1 - alpha_ * x0;
+  }
+  double end_force_share() const { return gamma_; }
+  template <class System>
+  StepInfo do_step(System& system) const {
+    return IteratedScheme::step(system);
+  }
+
+ private:
+  double alpha_, beta_, gamma_, dt_;
+};
+struct Hilber {
+  double alpha = -0.1;
+  HilberStepper stepper(double dt) const { return {alpha, dt}; }
+  std::string name() const { return "HHT-alpha in Hilber's form"; }
+};
+static_assert(IntegratorPolicy<Hilber>);
+static_assert(!IntegratorPolicy<IntegratorCoefficients>);
+
+// The phase per step of a sequence that obeys x_{n+1} + x_{n-1} = 2 cos(phi) x_n (an undamped
+// oscillation), fitted by least squares.
+double fitted_phase_per_step(const std::vector<double>& x) {
+  double num = 0, den = 0;
+  for (std::size_t i = 1; i + 1 < x.size(); ++i) {
+    num += x[i] * (x[i + 1] + x[i - 1]);
+    den += 2 * x[i] * x[i];
+  }
+  return std::acos(num / den);
+}
+
 }  // namespace
+
+TEST_CASE("an integrator of its own (HHT-alpha in Hilber's form) steps the Simulation as its analysis says", "[integrators][stepper]") {
+  // A second implementation of HHT-alpha, through the stepper API alone. (1) alpha = 0 is the
+  // trapezoidal rule: no decay and the closed-form phase 2 atan(omega dt / 2) per step (the period
+  // lengthened by omega dt / (2 atan(omega dt / 2))). Linear problem: the recurrence holds up to
+  // rounding (a scalar emulation of it in double precision fits the phase to 4e-16); bound 1e-9 for
+  // the element's rounding.
+  // (2) alpha < 0: the fitted spectral radius of 200 steps is the one-step map's
+  // (spectral_radius() of HhtAlpha's coefficients, an independent analysis), to 1e-7 as for
+  // generalized-alpha above; and the steps are the library's HhtAlpha's (generalized-alpha with
+  // am = 0, af = -alpha) up to rounding (bound 1e-9 of the amplitude).
+  const Oscillator osc;
+  for (const double W : {0.3, 1.0, 4.0}) {
+    const auto x = osc.history(Hilber{0.0}, W / osc.omega, 200);
+    const double phase = fitted_phase_per_step(x), expected = 2 * std::atan(W / 2);
+    INFO("omega dt " << W << ": phase per step " << phase << ", closed form " << expected << ", period ratio "
+                     << W / expected);
+    CHECK(std::abs(phase - expected) < 1e-9);
+    CHECK(std::abs(fitted_spectral_radius3(x) - 1) < 1e-6);  // rank-deficient fit (a_n slaved): looser
+  }
+  for (const double alpha : {-0.05, -0.2, -1.0 / 3.0}) {
+    for (const double W : {0.3, 1.0, 4.0}) {
+      const double dt = W / osc.omega;
+      const auto x = osc.history(Hilber{alpha}, dt, 200);
+      const auto library = osc.history(HhtAlpha{alpha}, dt, 200);
+      const double measured = fitted_spectral_radius3(x), expected = spectral_radius(HhtAlpha{alpha}.coefficients(), W);
+      INFO("alpha " << alpha << ", omega dt " << W << ": measured " << measured << ", expected " << expected);
+      CHECK(std::abs(measured - expected) < 1e-7);
+      double diff = 0;
+      for (std::size_t i = 0; i < x.size(); ++i) diff = std::max(diff, std::abs(x[i] - library[i]));
+      CHECK(diff <= 1e-9 * 1e-3 / osc.omega);
+    }
+  }
+  // The closed form at infinity, rho = (1 + alpha) / (1 - alpha), against the analysis.
+  for (const double alpha : {-0.05, -0.2, -1.0 / 3.0})
+    CHECK(spectral_radius(HhtAlpha{alpha}.coefficients(), 1e6) == Approx((1 + alpha) / (1 - alpha)).margin(1e-4));
+}
+
+TEST_CASE("a stepper checks its step length, naming the value", "[integrators][stepper][input]") {
+  // One definition (step_length.hpp) for the Simulation, the integrators and the scene's dt.
+  CHECK(step_length_problem(1e-3).empty());
+  CHECK(step_length_problem(min_step_length).empty());
+  CHECK(step_length_problem(0.0) == "must be positive (got 0)");
+  CHECK(step_length_problem(-1e-3) == "must be positive (got -0.001)");
+  CHECK(step_length_problem(1e-12) == "must be at least 1e-09 s (got 1e-12)");
+  CHECK(step_length_problem(5e-7, 1e-6) == "must be at least 1e-06 s (got 5e-07)");
+  CHECK(step_length_problem(std::nan("")) == "must be finite (got nan)");
+  CHECK(step_length_problem(HUGE_VAL) == "must be finite (got inf)");
+  CHECK_THROWS_WITH(Newmark::paper().stepper(1e-300), "integrator: dt must be at least 1e-09 s (got 1e-300)");
+  CHECK_THROWS_WITH(GeneralizedAlpha{0.8}.stepper(-2.0), "integrator: dt must be positive (got -2)");
+  CHECK_THROWS_AS(Hilber{-0.1}.stepper(0.0), ModelError);
+  CHECK(Newmark::paper().stepper(2e-3).dt() == 2e-3);
+}
 
 TEST_CASE("generalized-alpha with rho_inf = 1 is the trapezoidal rule", "[integrators]") {
   const auto c = GeneralizedAlpha{1.0}.coefficients();

@@ -97,15 +97,17 @@ TEST_CASE("Newmark's rates of affine fields are the nodes' rates", "[core][rigid
   // The scheme's acceleration and velocity are linear in their inputs: applied to the fields, they give
   // at every arm what the node's own update gives.
   std::mt19937 rng(7);
-  const IntegratorCoefficients c = Newmark::paper().coefficients();
   const double dt = 1e-3;
+  const AlphaStepper stepper = Newmark::paper().stepper(dt);
+  const IntegratorCoefficients c = stepper.coefficients();
   const AffineField du = random_field(rng, 1e-3), vn = random_field(rng, 1.0), an = random_field(rng, 10.0);
-  const AffineField a1 = c.acceleration(du, vn, an, dt), v1 = c.velocity(vn, an, a1, dt);
+  const auto fields = stepper.update(du, vn, an);
+  const AffineField a1 = fields.acceleration, v1 = fields.velocity;
   std::uniform_real_distribution<double> u(-1, 1);
   for (int k = 0; k < 20; ++k) {
     const Vector3d rho(u(rng), u(rng), u(rng));
-    const Vector3d a_node = c.acceleration<Vector3d>(du.at(rho), vn.at(rho), an.at(rho), dt);
-    const Vector3d v_node = c.velocity<Vector3d>(vn.at(rho), an.at(rho), a_node, dt);
+    const auto node = stepper.update<Vector3d>(du.at(rho), vn.at(rho), an.at(rho));
+    const Vector3d a_node = node.acceleration, v_node = node.velocity;
     // The acceleration differences terms of about du / (beta dt^2): rounding relative to those terms.
     const double terms = (du.at(rho).norm() + dt * vn.at(rho).norm() + dt * dt * an.at(rho).norm()) / (c.beta * dt * dt);
     CHECK((a1.at(rho) - a_node).norm() <= 1e-13 * terms);
@@ -214,7 +216,8 @@ TEST_CASE("a rigid body's reduced residual and its norms from fields and moments
       if (it == merged.end()) merged.push_back(e);
       else it->s += e.s, it->l1 += e.l1, it->fc1 += e.fc1;
     }
-    const auto got = detail::rigid_reduced_residual(mm, P, f, am, af, c, g1, g0, merged);
+    const AlphaStepper stepper({am, af, 0.25, 0.5}, EquilibriumMode::iterate, 1e-3);  // only am, af enter
+    const auto got = detail::rigid_reduced_residual(mm, P, f, stepper, c, g1, g0, merged);
     INFO("trial " << trial << ", " << n << " nodes, " << merged.size() << " nodes with extras");
     const double scale = R.norm() + mm.mass.w * 30;
     CHECK((got.R - R).norm() <= 1e-11 * scale);
@@ -279,7 +282,9 @@ TEST_CASE("a rigid body stepped on its affine fields follows the nodal scheme", 
   const auto mm = detail::RigidMassMoments::of(std::span<const int>(b.nodes), b.X, b.m, b.J);
   const Newmark scheme = Newmark::paper();
   const IntegratorCoefficients k = scheme.coefficients();
-  const double dt = 1e-3, am = k.alpha_m, af = k.alpha_f, c = 0.0, mf = k.mass_factor(dt, c);
+  const double dt = 1e-3, am = k.alpha_m, af = k.alpha_f, c = 0.0;
+  const AlphaStepper stepper = scheme.stepper(dt);
+  const double mf = stepper.mass_factor(c);
   const auto table = [](double t) { return Vector3d(3 * std::sin(7 * t), 2 * std::cos(5 * t), 0.5 * std::sin(11 * t)); };
   const Vector3d gravity(0, 0, -9.81);
   // Start: spinning and moving, accelerations of the rigid motion under gravity and the table (no moment).
@@ -307,8 +312,9 @@ TEST_CASE("a rigid body stepped on its affine fields follows the nodal scheme", 
     Vector3d c0 = Vector3d::Zero();
     for (int i = 0; i < n; ++i) {
       vn[i] = v[i], an[i] = a[i], Du[i].setZero();
-      a[i] = k.acceleration<V6>(Du[i], vn[i], an[i], dt);
-      v[i] = k.velocity<V6>(vn[i], an[i], a[i], dt);
+      const auto rates = stepper.update<V6>(Du[i], vn[i], an[i]);
+      a[i] = rates.acceleration;
+      v[i] = rates.velocity;
       x0[i] = x[i];
       c0 += b.m[i] * x[i];
     }
@@ -336,28 +342,33 @@ TEST_CASE("a rigid body stepped on its affine fields follows the nodal scheme", 
     const Vector3d rot = detail::rotation_log(Q);
     for (int i = 0; i < n; ++i) {
       Du[i] << c0 + dq.head<3>() + Q * (x0[i] - c0) - x0[i], rot;
-      a[i] = k.acceleration<V6>(Du[i], vn[i], an[i], dt);
-      v[i] = k.velocity<V6>(vn[i], an[i], a[i], dt);
+      const auto rates = stepper.update<V6>(Du[i], vn[i], an[i]);
+      a[i] = rates.acceleration;
+      v[i] = rates.velocity;
       x[i] = x0[i] + Du[i].head<3>();
       fnet0[i] << b.m[i] * g1, Vector3d::Zero();
     }
     // -- fields --
     detail::RigidStepFields p = f;
     p.vn = f.v, p.an = f.a, p.wn = f.w, p.alphan = f.alpha;
-    p.a = k.acceleration(AffineField{}, p.vn, p.an, dt);
-    p.v = k.velocity(p.vn, p.an, p.a, dt);
-    p.alpha = k.acceleration<Vector3d>(Vector3d::Zero(), p.wn, p.alphan, dt);
-    p.w = k.velocity<Vector3d>(p.wn, p.alphan, p.alpha, dt);
-    const auto res = detail::rigid_reduced_residual(mm, Qtot, p, am, af, c, g1, g0, {});
+    const auto predicted = stepper.update(AffineField{}, p.vn, p.an);
+    const auto predicted_turn = stepper.update<Vector3d>(Vector3d::Zero(), p.wn, p.alphan);
+    p.a = predicted.acceleration;
+    p.v = predicted.velocity;
+    p.alpha = predicted_turn.acceleration;
+    p.w = predicted_turn.velocity;
+    const auto res = detail::rigid_reduced_residual(mm, Qtot, p, stepper, c, g1, g0, {});
     Eigen::Matrix<double, 6, 6> Af = detail::rigid_mass_matrix(mm, Qtot, mf);
     const V6 dqf = Af.ldlt().solve(res.R);
     const Matrix3d Qf = detail::rotation_exp(dqf.tail<3>());
     const Vector3d rotf = detail::rotation_log(Qf);
     const AffineField du{dqf.head<3>(), (Qf - Matrix3d::Identity()) * Qtot};
-    p.a = k.acceleration(du, p.vn, p.an, dt);
-    p.v = k.velocity(p.vn, p.an, p.a, dt);
-    p.alpha = k.acceleration<Vector3d>(rotf, p.wn, p.alphan, dt);
-    p.w = k.velocity<Vector3d>(p.wn, p.alphan, p.alpha, dt);
+    const auto translation = stepper.update(du, p.vn, p.an);
+    const auto rotation = stepper.update<Vector3d>(rotf, p.wn, p.alphan);
+    p.a = translation.acceleration;
+    p.v = translation.velocity;
+    p.alpha = rotation.acceleration;
+    p.w = rotation.velocity;
     c_body += dqf.head<3>();
     Qtot = Qf * Qtot;
     f = p;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -230,6 +231,18 @@ TEST_CASE("broken scene files name the key path and the value", "[scene][errors]
     CHECK_THAT(parse_error(j), Contains("refresh_every") && Contains("got 0") && Contains("positive"));
     j["refresh_every"] = "often";
     CHECK_THAT(parse_error(j), Contains("refresh_every") && Contains("expected a number"));
+  }
+  SECTION("dt below the scene's minimum: the reader and validate() give the step length's one message") {
+    // step_length_problem (core/step_length.hpp) with the scene's bound, 1e-6 s, under the key dt.
+    j["dt"] = 5e-7;
+    CHECK_THAT(parse_error(j), Contains("broken.json: dt: must be at least 1e-06 s (got 5e-07)"));
+    SceneSpec spec = parse_scene_json(small_scene(), "small.json");
+    spec.dt = 5e-7;
+    CHECK_THAT(input_error([&] { validate(spec); }), Contains("small.json: dt: must be at least 1e-06 s (got 5e-07)"));
+    spec.dt = std::numeric_limits<double>::infinity();
+    CHECK_THAT(input_error([&] { validate(spec); }), Contains("small.json: dt: must be finite (got inf)"));
+    spec.dt = SceneSpec::min_dt;
+    CHECK_NOTHROW(validate(spec));
   }
   SECTION("dt longer than the run") {
     j["dt"] = 10.0;

@@ -26,6 +26,7 @@
 #include <string>
 #include <span>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "checkpoint.hpp"
@@ -50,11 +51,9 @@
 namespace furniture_fem {
 
 struct SimulationOptions {
-  // s; at least min_dt. Below it the integrator's mass term m / (beta dt^2) swamps the stiffness in
-  // double precision (a 0.1 kg node at 1e-9 s: 4e17 N/m against members' 1e6 N/m), and it overflows
-  // below 1e-154 s: dt = 1e-300 ran and then "diverged; try a smaller dt" (issue 13).
+  // s; a valid step length (step_length.hpp: finite, at least min_dt), checked by the integrator's stepper.
   double dt = 1e-3;
-  static constexpr double min_dt = 1e-9;
+  static constexpr double min_dt = min_step_length;
   Vec3 gravity = Vec3(0, 0, -9.80665);
   double mass_damping = 0;      // C = mass_damping * M (1/s); 0: no viscous damping
   // Structural damping of flexible members (s): each element's deformational force gains
@@ -356,7 +355,7 @@ class Simulation {
   // Steps until time t_end; the observer (if any) is called after every step with (sim, info).
   template <class Observer>
   void run_until(double t_end, Observer&& observer) {
-    while (t_ < t_end - 0.5 * opt_.dt) {
+    while (t_ < t_end - 0.5 * stepper_.dt()) {
       const StepInfo info = step();
       observer(*this, info);
     }
@@ -766,8 +765,8 @@ class Simulation {
   // Newmark's velocity and acceleration from the increment Du, and the nodes' placement.
   void kinematics_body(int b);
 
-  // Newmark's acceleration and velocity of the node whose first DOF is i, from its increment Du.
-  void newmark_rates(int i, double dt);
+  // The stepper's acceleration and velocity of the node whose first DOF is i, from its increment Du.
+  void newmark_rates(int i);
 
   // A force's work over a step, f0 at its start and f1 at its end, as the integrator applies it:
   // M (v1 - v0) = dt ((1 - gamma) f0 + gamma f1), moved through the step's mean velocity, so that the
@@ -885,7 +884,10 @@ class Simulation {
   const Model& model_;
   Integrator integrator_;
   SimulationOptions opt_;
-  IntegratorCoefficients coef_;
+  // The integrator's stepper, the owner of the current step length: opt_.dt, or an impact's sub-step
+  // (set_step_length remakes it).
+  using StepperType = decltype(std::declval<const Integrator&>().stepper(1.0));
+  StepperType stepper_;
   Contact contact_;
   std::function<Vec3(double)> table_acc_;
   std::function<double(double)> load_scale_;

@@ -97,6 +97,40 @@ struct ResolvedOutputs {
 
 // What every observer receives: the scene and its model, the simulation (read-only), the options,
 // and the run's schedule. One RunView lives for the whole run; its `sim` always shows the current state.
+// The table's velocity and displacement, integrated from its acceleration (RunView::motion) step by
+// step from rest: exact for an acceleration linear over each step (a record sampled at dt). The runner
+// integrates the table's motion once per run (RunView::table); an observer may integrate another motion
+// (input_motion.csv: the ground's beside a building's storey).
+class TableMotionIntegrator {
+ public:
+  void start(const TableMotion& m, double t) {
+    t_ = t;
+    a_ = m.at(t);
+    v_.setZero();
+    d_.setZero();
+  }
+  void advance(const TableMotion& m, double t) {
+    const double h = t - t_;
+    const Vec3 a1 = m.at(t);
+    d_ += h * v_ + h * h / 6.0 * (2.0 * a_ + a1);
+    v_ += 0.5 * h * (a_ + a1);
+    a_ = a1;
+    t_ = t;
+  }
+  const Vec3& acceleration() const { return a_; }
+  const Vec3& velocity() const { return v_; }
+  const Vec3& displacement() const { return d_; }
+  template <class Self, class Archive>
+    requires std::is_same_v<std::remove_const_t<Self>, TableMotionIntegrator>
+  friend void transfer_state(Self& m, Archive& ar) {
+    ar(m.t_, m.a_, m.v_, m.d_);
+  }
+
+ private:
+  double t_ = 0;
+  Vec3 a_ = Vec3::Zero(), v_ = Vec3::Zero(), d_ = Vec3::Zero();
+};
+
 struct RunView {
   const SceneSpec& spec;
   const Model& model;
@@ -112,6 +146,9 @@ struct RunView {
   double settle_from = 0;                   // the run's last 0.5 s start here (s): what rests on what
   // The energy ledger at the latest history row (the runner computes it once per row).
   EnergyLedger row_energy;
+  // The table's acceleration, velocity and displacement at sim.time(), integrated from rest at the run's
+  // start (the runner advances it after every step, before the observers see the step).
+  TableMotionIntegrator table;
 
   // True at the initial state and every row_interval_steps steps: history observers write a row.
   bool row_due() const { return sim.steps() % row_interval_steps == 0; }

@@ -118,38 +118,6 @@ LineMesh line_mesh(const Sim& sim, const Model& model, bool forces) {
 
 inline std::array<double, 6> section_components(const SectionForces& f) { return {f.N, f.Qy, f.Qz, f.Mx, f.My, f.Mz}; }
 
-// The table's velocity and displacement, integrated from its acceleration (RunView::motion) step by
-// step from rest: exact for an acceleration linear over each step (a record sampled at dt).
-class TableMotionIntegrator {
- public:
-  void start(const TableMotion& m, double t) {
-    t_ = t;
-    a_ = m.at(t);
-    v_.setZero();
-    d_.setZero();
-  }
-  void advance(const TableMotion& m, double t) {
-    const double h = t - t_;
-    const Vec3 a1 = m.at(t);
-    d_ += h * v_ + h * h / 6.0 * (2.0 * a_ + a1);
-    v_ += 0.5 * h * (a_ + a1);
-    a_ = a1;
-    t_ = t;
-  }
-  const Vec3& acceleration() const { return a_; }
-  const Vec3& velocity() const { return v_; }
-  const Vec3& displacement() const { return d_; }
-  template <class Self, class Archive>
-    requires std::is_same_v<std::remove_const_t<Self>, TableMotionIntegrator>
-  friend void transfer_state(Self& m, Archive& ar) {
-    ar(m.t_, m.a_, m.v_, m.d_);
-  }
-
- private:
-  double t_ = 0;
-  Vec3 a_ = Vec3::Zero(), v_ = Vec3::Zero(), d_ = Vec3::Zero();
-};
-
 inline const std::array<const char*, 7>& ledger_terms() {
   static const std::array<const char*, 7> names{"kinetic",      "strain",       "gravity_potential", "external_work",
                                                 "contact_work", "damping_work", "plastic_work"};
@@ -498,22 +466,10 @@ class RowHistory : public RunObserver {
 // penalty contact at rest chatters from one step to the next, and single steps sampled one phase of
 // it. The first row: the initial state's acceleration.
 class MarkerHistory : public RowHistory {
- public:
-  void begin(const RunView& run) override {
-    table_.start(run.motion, run.sim.time());
-    RowHistory::begin(run);
-  }
-  void after_step(const RunView& run, const StepInfo& step) override {
-    table_.advance(run.motion, run.sim.time());
-    RowHistory::after_step(run, step);
-  }
-
- private:
-  detail::TableMotionIntegrator table_;
   std::vector<Vec3> v_prev_;  // each marker's absolute velocity at the previous row (m/s)
   double t_prev_ = 0;
-  void save_rows(StateWriter& w) override { w(table_, v_prev_, t_prev_); }
-  void resume_rows(StateReader& r) override { r(table_, v_prev_, t_prev_); }
+  void save_rows(StateWriter& w) override { w(v_prev_, t_prev_); }
+  void resume_rows(StateReader& r) override { r(v_prev_, t_prev_); }
 
   std::string file() const override { return "markers.csv"; }
   std::vector<std::string> columns(const RunView& run) const override {
@@ -530,8 +486,8 @@ class MarkerHistory : public RowHistory {
     for (std::size_t i = 0; i < run.requests.markers.size(); ++i) {
       const int node = run.requests.markers[i].node;
       const Vec3 d = run.sim.displacement(node);
-      const Vec3 v = run.sim.velocity(node).head<3>() + table_.velocity();
-      const Vec3 a = first ? Vec3(run.sim.acceleration(node).head<3>() + table_.acceleration())
+      const Vec3 v = run.sim.velocity(node).head<3>() + run.table.velocity();
+      const Vec3 a = first ? Vec3(run.sim.acceleration(node).head<3>() + run.table.acceleration())
                            : Vec3((v - v_prev_[i]) / (t - t_prev_));
       v_prev_[i] = v;
       row.insert(row.end(), {d[0], d[1], d[2], a[0], a[1], a[2]});
@@ -582,12 +538,10 @@ class InputMotionHistory : public RowHistory {
  public:
   void begin(const RunView& run) override {
     ground_ = detail::ground_under_table(run.spec);
-    table_.start(run.motion, run.sim.time());
     if (ground_) ground_table_.start(*ground_, run.sim.time());
     RowHistory::begin(run);
   }
   void after_step(const RunView& run, const StepInfo& step) override {
-    table_.advance(run.motion, run.sim.time());
     if (ground_) ground_table_.advance(*ground_, run.sim.time());
     RowHistory::after_step(run, step);
   }
@@ -597,14 +551,12 @@ class InputMotionHistory : public RowHistory {
   }
 
  private:
-  detail::TableMotionIntegrator table_, ground_table_;
+  TableMotionIntegrator ground_table_;
   std::optional<TableMotion> ground_;
   void save_rows(StateWriter& w) override {
-    w(table_);
     if (ground_) w(ground_table_);
   }
   void resume_rows(StateReader& r) override {
-    r(table_);
     if (ground_) r(ground_table_);
   }
   std::string file() const override { return "input_motion.csv"; }
@@ -616,7 +568,7 @@ class InputMotionHistory : public RowHistory {
   }
   void write_row(const RunView& run) override {
     std::vector<double> row{run.sim.time()};
-    for (const auto* m : {&table_, &ground_table_}) {
+    for (const TableMotionIntegrator* m : {&run.table, &std::as_const(ground_table_)}) {
       if (m == &ground_table_ && !ground_) break;
       for (const Vec3* q : {&m->acceleration(), &m->velocity(), &m->displacement()}) row.insert(row.end(), q->begin(), q->end());
     }
@@ -733,11 +685,9 @@ class Figures : public RunObserver {
     shear_series_.resize(2 * run.requests.sections.size());
     motion_series_.resize(9);
     energy_series_.resize(detail::ledger_terms().size() + 1);
-    table_.start(run.motion, run.sim.time());
     sample(run);
   }
   void after_step(const RunView& run, const StepInfo&) override {
-    table_.advance(run.motion, run.sim.time());
     if (run.row_due()) sample(run);
   }
   void end(const RunView& run, RunSummary&) override {
@@ -747,9 +697,9 @@ class Figures : public RunObserver {
     draw_energy(run);
     draw_room(run);
   }
-  void save(StateWriter& w) override { w(t_, marker_series_, shear_series_, motion_series_, energy_series_, table_); }
+  void save(StateWriter& w) override { w(t_, marker_series_, shear_series_, motion_series_, energy_series_); }
   void resume(const RunView&, StateReader& r) override {
-    r(t_, marker_series_, shear_series_, motion_series_, energy_series_, table_);
+    r(t_, marker_series_, shear_series_, motion_series_, energy_series_);
   }
 
  private:
@@ -757,14 +707,13 @@ class Figures : public RunObserver {
   std::vector<std::vector<double>> marker_series_, shear_series_;
   std::vector<std::vector<double>> motion_series_;  // acceleration x y z, velocity x y z, displacement x y z
   std::vector<std::vector<double>> energy_series_;  // the ledger's terms (detail::ledger_terms()), then the imbalance
-  detail::TableMotionIntegrator table_;
 
   void sample(const RunView& run) {
     t_.push_back(run.sim.time());
     for (int c = 0; c < 3; ++c) {
-      motion_series_[c].push_back(table_.acceleration()[c]);
-      motion_series_[3 + c].push_back(table_.velocity()[c]);
-      motion_series_[6 + c].push_back(table_.displacement()[c]);
+      motion_series_[c].push_back(run.table.acceleration()[c]);
+      motion_series_[3 + c].push_back(run.table.velocity()[c]);
+      motion_series_[6 + c].push_back(run.table.displacement()[c]);
     }
     const auto terms = detail::ledger_values(run.row_energy);
     for (std::size_t k = 0; k < terms.size(); ++k) energy_series_[k].push_back(terms[k]);

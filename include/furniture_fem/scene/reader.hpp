@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "../core/errors.hpp"
+#include "../core/step_length.hpp"
 #include "../furniture/item_kinds.hpp"
 #include "item_parameters.hpp"
 #include "spec.hpp"
@@ -373,8 +374,8 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
   s.duration = r.number("duration", s.duration);
   r.positive("duration");
   s.dt = r.number("dt", s.dt);
-  r.positive("dt");
-  if (r.has("dt")) r.require(s.dt >= SceneSpec::min_dt, "dt", "must be at least " + detail::fmt(SceneSpec::min_dt) + " s");
+  if (r.has("dt"))
+    if (const std::string why = step_length_problem(s.dt, SceneSpec::min_dt); !why.empty()) r.fail(r.path("dt"), why);
   if (r.has("dt")) r.require(s.dt <= s.duration, "dt", "must not exceed duration (" + detail::fmt(s.duration) + " s)");
   s.allow_coarse_dt = r.boolean("allow_coarse_dt", s.allow_coarse_dt);
 

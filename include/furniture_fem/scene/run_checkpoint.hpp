@@ -35,8 +35,9 @@ namespace furniture_fem {
 inline constexpr const char* checkpoint_file = "checkpoint.bin";
 // 2: the Figures observer keeps the energy series; 3: a settled start's figures and each item's start;
 // 4: whether the settling finished, and its fastest item; 5: the CRC-32 at the end, and the structs that
-// have padding stored member by member (no padding byte is written).
-inline constexpr std::string_view checkpoint_magic = "furniture_fem checkpoint 5";
+// have padding stored member by member (no padding byte is written); 6: the table's motion integrated
+// once, by the runner (RunView::table), instead of in three observers.
+inline constexpr std::string_view checkpoint_magic = "furniture_fem checkpoint 6";
 inline constexpr std::size_t checkpoint_checksum_bytes = 4;  // the CRC-32 after the state
 
 // What a resumed run must share with the run that wrote the checkpoint: the scene and every run
@@ -123,9 +124,10 @@ inline std::string first_difference(const nlohmann::json& saved, const nlohmann:
 
 // Writes the checkpoint of a run between two steps.
 inline void write_checkpoint(const std::string& out_dir, const nlohmann::json& fingerprint, const RunnerState& state,
-                             const SteppedSimulation& sim, const std::vector<RunObserver*>& observers) {
+                             const TableMotionIntegrator& table, const SteppedSimulation& sim,
+                             const std::vector<RunObserver*>& observers) {
   StateWriter w;
-  w(std::string(checkpoint_magic), fingerprint.dump(), state);
+  w(std::string(checkpoint_magic), fingerprint.dump(), state, table);
   sim.save_state(w);
   w(observers.size());
   for (RunObserver* o : observers) o->save(w);
@@ -151,10 +153,11 @@ inline void check_resumable_folder(const std::string& out_dir) {
 }
 
 // Reads a checkpoint into a run built from the same scene and options: the runner's state is
-// returned, the simulation's and the observers' are loaded (the observers reopen their files).
+// returned, the table's motion, the simulation's and the observers' are loaded (the observers reopen
+// their files).
 inline RunnerState resume_from_checkpoint(const std::string& out_dir, const nlohmann::json& fingerprint,
                                           SteppedSimulation& sim, const std::vector<RunObserver*>& observers,
-                                          const RunView& run) {
+                                          RunView& run) {
   const std::string path = detail::checkpoint_path(out_dir);
   std::ifstream f(path, std::ios::binary);
   if (!f) throw InputError(path, 0, "--resume", "cannot open the checkpoint");
@@ -176,7 +179,7 @@ inline RunnerState resume_from_checkpoint(const std::string& out_dir, const nloh
                      "the run is not the one that wrote the checkpoint (" + diff +
                          "); resume with the same scene file and options");
   RunnerState state;
-  r(state);
+  r(state, run.table);
   sim.load_state(r);
   std::size_t count = 0;
   r(count);

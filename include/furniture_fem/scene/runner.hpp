@@ -388,7 +388,8 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
               t_end,
               row_interval_steps(opt, spec.dt),
               t_end - 0.5,
-              sim.energy()};
+              sim.energy(),
+              TableMotionIntegrator{}};
   const ContactStepEstimate& estimate = scene.estimate;
 
   RunSummary sum;
@@ -420,6 +421,7 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
                                        saved.fastest_item >= 0 ? run.items.at(saved.fastest_item).name : ""};
     if (record) record->note_resume(sim.time());
   } else {
+    run.table.start(run.motion, sim.time());
     for (RunObserver* o : observers) o->begin(run);
   }
   const auto wall_now = [&] {
@@ -430,7 +432,7 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
     write_checkpoint(run.out_dir, fingerprint,
                      {run.row_energy, trusted, sum.max_energy_imbalance, wall_now(), settled.settling_time,
                       settled.max_node_speed, settled.settled ? 1 : 0, item_index(run.items, settled.fastest_item)},
-                     sim, observers);
+                     run.table, sim, observers);
   };
   auto last_checkpoint = std::chrono::steady_clock::now();
   const bool periodic = !run.out_dir.empty() && opt.checkpoint_every > 0;
@@ -463,6 +465,7 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
                                               scene.model.body(scene.model.node(n).body).name +
                                               "' has a non-finite position, rotation or velocity after the step: "
                                               "the step diverged (try a smaller dt or a softer penalty)");
+      run.table.advance(run.motion, sim.time());
       if (run.row_due()) {
         run.row_energy = sim.energy();
         check_energy_creation(run, estimate);
@@ -504,7 +507,7 @@ inline RunSummary run_observed_in(const SceneSpec& spec, const RunOptions& opt, 
   const RunView end_view{run.spec,      run.model,   run.items, run.motion,
                          run.rigid_bodies, run.requests, end_state, run.options,
                          run.out_dir,   run.t_end,   run.row_interval_steps, run.settle_from,
-                         diverged ? trusted : run.row_energy};
+                         diverged ? trusted : run.row_energy, run.table};
   for (RunObserver* o : observers) o->end(end_view, sum);
   // Only a stopped run is to be gone on with (a killed one keeps its last periodic checkpoint).
   if (!run.out_dir.empty() && sum.status != "stopped") {

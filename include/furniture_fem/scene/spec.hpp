@@ -297,6 +297,8 @@ struct SceneSpec {
   double dt = 1e-3;        // s (the paper's 1 ms); at least min_dt
   // The shortest time step a scene may ask for: a thousandth of the paper's (the stiffest penalties'
   // stable steps are around 0.1 ms). dt = 1e-300 was accepted and then "diverged; try a smaller dt".
+  // Checked by step_length_problem (core/step_length.hpp), as every step length is; the core's own
+  // bound, min_step_length, is lower (an impact's sub-steps of a scene's step).
   static constexpr double min_dt = 1e-6;
   // A dt longer than the ground motion's sample interval or than contact_step_error_factor times the
   // explicit contact's stable step is an error unless this is true (runner.hpp: check_motion_sampling,

@@ -15,6 +15,7 @@
 
 #include "../core/errors.hpp"
 #include "../core/model.hpp"
+#include "../core/step_length.hpp"
 #include "../excitation/known_records.hpp"
 #include "build.hpp"
 #include "item_parameters.hpp"
@@ -132,9 +133,11 @@ inline void validate(const SceneSpec& s) {
     throw InputError(s.source, 0, path, message);
   };
   const auto item_label = [&](size_t i) { return "item '" + s.items[i].name + "'"; };
-  if (!(s.dt >= SceneSpec::min_dt) || !(s.duration > 0) || s.dt > s.duration)
-    fail("dt", "must be at least " + detail::fmt(SceneSpec::min_dt) + " s and not exceed duration (dt = " +
-                   detail::fmt(s.dt) + " s, duration = " + detail::fmt(s.duration) + " s)");
+  if (const std::string why = step_length_problem(s.dt, SceneSpec::min_dt); !why.empty()) fail("dt", why);
+  if (!(s.duration > 0) || !std::isfinite(s.duration))
+    fail("duration", "must be positive and finite (got " + detail::fmt(s.duration) + ")");
+  if (s.dt > s.duration)
+    fail("dt", "must not exceed duration (dt = " + detail::fmt(s.dt) + " s, duration = " + detail::fmt(s.duration) + " s)");
   if (s.ground_motion.level < 0) fail("ground_motion.level", "must not be negative (got " + detail::fmt(s.ground_motion.level) + ")");
   if (s.items.empty()) fail("items", "a scene needs at least one item");
   if (s.contact.law.index >= scene_law_infos.size())

@@ -146,20 +146,22 @@ struct RigidNodeExtra {
 // Simulation::residual_body sums them node by node (every node's six DOFs; a rigid body has no fixed
 // DOF and no internal force). Uniform loads per unit mass: g1 at t_{n+1}, g0 at t_n (gravity less the
 // table's acceleration); `extra` lists the nodes with anything else, each node once (its contacts summed).
+// The stepper (integrators.hpp) says where the balance is enforced.
 struct RigidReducedResidual {
   Eigen::Matrix<double, 6, 1> R = Eigen::Matrix<double, 6, 1>::Zero();
   double num = 0, den = 0;
 };
-inline RigidReducedResidual rigid_reduced_residual(const RigidMassMoments& mm, const Eigen::Matrix3d& P,
-                                                   const RigidStepFields& f, double am, double af, double c,
-                                                   const Eigen::Vector3d& g1, const Eigen::Vector3d& g0,
-                                                   std::span<const RigidNodeExtra> extra) {
+template <class Stepper>
+RigidReducedResidual rigid_reduced_residual(const RigidMassMoments& mm, const Eigen::Matrix3d& P,
+                                            const RigidStepFields& f, const Stepper& stepper, double c,
+                                            const Eigen::Vector3d& g1, const Eigen::Vector3d& g0,
+                                            std::span<const RigidNodeExtra> extra) {
   using V3 = Eigen::Vector3d;
   // Translational residual per unit mass: F = (1 - af) g1 + af g0 - I - c D.
-  const AffineField inertia = (1 - am) * f.a + am * f.an, damping = (1 - af) * f.v + af * f.vn;
-  AffineField F = AffineField::uniform((1 - af) * g1 + af * g0) - inertia - c * damping;
+  const AffineField inertia = stepper.at_inertia_point(f.a, f.an), damping = stepper.at_force_point(f.v, f.vn);
+  AffineField F = AffineField::uniform(stepper.at_force_point(g1, g0)) - inertia - c * damping;
   // Rotational residual per unit rotary mass (per axis): G = -(alpha's) - c (w's).
-  const V3 Irot = (1 - am) * f.alpha + am * f.alphan, Drot = (1 - af) * f.w + af * f.wn;
+  const V3 Irot = stepper.at_inertia_point(f.alpha, f.alphan), Drot = stepper.at_force_point(f.w, f.wn);
   const V3 G = -Irot - c * Drot;
   RigidReducedResidual out;
   out.R.head<3>() = mm.mass.sum(F);

@@ -87,12 +87,12 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::RigidBody {
   // I_n = R_n T_n R_n^T (T_n the initial tensor) on the (generalized-alpha) angular acceleration, and
   // the gyroscopic w x I_n w. Returns the correction D alpha - I_n alpha - w x I_n w over the body.
   static Vec3 anisotropic_inertia_moment(const Simulation& sim, const detail::BodySystem& bs) {
-    const double am = sim.coef_.alpha_m;
     Vec3 M = Vec3::Zero();
     for (int n : bs.nodes) {
       if (sim.rotary_index_[n] < 0) continue;  // isotropic: the diagonal is exact, w x J w = 0
       const Vec3 D = sim.mass_.template segment<3>(6 * n + 3);
-      const Vec3 alpha = (1 - am) * sim.a_.template segment<3>(6 * n + 3) + am * sim.an_.template segment<3>(6 * n + 3);
+      const Vec3 alpha = sim.stepper_.template at_inertia_point<Vec3>(sim.a_.template segment<3>(6 * n + 3),
+                                                                      sim.an_.template segment<3>(6 * n + 3));
       const Vec3 w = sim.v_.template segment<3>(6 * n + 3);
       const Mat3 In = sim.node_rotary_inertia(n);
       M += D.cwiseProduct(alpha) - In * alpha - w.cross(In * w);
@@ -135,7 +135,7 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::RigidBody {
     const auto index = [&](int body) {
       return static_cast<int>(std::find(members.begin(), members.end(), body) - members.begin());
     };
-    const double kf = 1 - sim.coef_.alpha_f, cf = sim.coef_.gamma / (sim.coef_.beta * sim.opt_.dt);
+    const double kf = sim.stepper_.stiffness_factor(), cf = sim.stepper_.velocity_factor();
     const auto& pairs = sim.contact_.pair_tangents();
     // Summed per body pair (detail/rigid_pair_terms.hpp): the group's matrix gets each body pair's
     // blocks once. (Added pair by pair, the 6 x 6 products T^T k T were 9.8 % of configuration 3
@@ -155,7 +155,7 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::RigidBody {
     Vec3 c;  // the mass centre the rotations are about
   };
   static ReducedSystem reduced_system(const Simulation& sim, const detail::BodySystem& bs) {
-    const double mf = sim.coef_.mass_factor(sim.opt_.dt, sim.opt_.mass_damping);
+    const double mf = sim.stepper_.mass_factor(sim.opt_.mass_damping);
     if (const auto& F = sim.fields_[&bs - sim.systems_.data()]; F.on) {
       Eigen::Matrix<double, 6, 6> A = detail::rigid_mass_matrix(F.mm, F.Q, mf);
       if (!sim.static_) add_contact_terms(sim, bs, F.c, A);

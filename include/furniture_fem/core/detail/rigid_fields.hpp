@@ -154,13 +154,14 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::RigidFields {
     place_start_rates(sim, b, sim.step_nodes(b));
     sim.unplaced_[b] = !sim.step_nodes_[b].empty();
   }
-  // Newmark's acceleration and velocity from the increment (IntegratorCoefficients on the fields).
+  // The stepper's acceleration and velocity from the increment, on the fields.
   static void rates(const Simulation& sim, Fields& F) {
-    const double dt = sim.opt_.dt;
-    F.f.a = sim.coef_.acceleration(F.du, F.f.vn, F.f.an, dt);
-    F.f.v = sim.coef_.velocity(F.f.vn, F.f.an, F.f.a, dt);
-    F.f.alpha = sim.coef_.acceleration(F.dtheta, F.f.wn, F.f.alphan, dt);
-    F.f.w = sim.coef_.velocity(F.f.wn, F.f.alphan, F.f.alpha, dt);
+    auto translation = sim.stepper_.update(F.du, F.f.vn, F.f.an);
+    F.f.a = std::move(translation.acceleration);
+    F.f.v = std::move(translation.velocity);
+    auto rotation = sim.stepper_.update(F.dtheta, F.f.wn, F.f.alphan);
+    F.f.alpha = rotation.acceleration;
+    F.f.w = rotation.velocity;
   }
   // The increment's rates and the nodes the step reads placed on the body's motion.
   static void kinematics(Simulation& sim, int b) {
@@ -194,8 +195,8 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::RigidFields {
   // Nodes ks's velocities: now, at the step's start, and the one the contact is evaluated at.
   static void place_start_rates(const Simulation& sim, int b, std::span<const int> ks) {
     const Fields& F = sim.fields_[b];
-    const detail::AffineField vc = F.f.vn + sim.opt_.dt * F.f.an;
-    const Vec3 wc = F.f.wn + sim.opt_.dt * F.f.alphan;
+    const detail::AffineField vc = sim.stepper_.contact_velocity(F.f.vn, F.f.an);
+    const Vec3 wc = sim.stepper_.contact_velocity(F.f.wn, F.f.alphan);
     const auto& arms = sim.rigid_arms_[b];
     const auto& nodes = sim.systems_[b].nodes;
     double* v = sim.v_.data();
@@ -237,7 +238,6 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::RigidFields {
   // The nodes carrying forces besides their share of the uniform load: those with contact forces at
   // either end of the step.
   static std::vector<detail::RigidNodeExtra> loaded_nodes(const Simulation& sim, int b) {
-    const double af = sim.coef_.alpha_f;
     std::vector<detail::RigidNodeExtra> out;
     for (int k : sim.step_nodes(b)) {
       const int n = sim.systems_[b].nodes[k], i = 6 * n;
@@ -247,7 +247,7 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::RigidFields {
       e.rho = arm(sim, n);
       e.m = sim.mass_[i];
       e.J = sim.mass_.template segment<3>(i + 3);
-      e.s = (1 - af) * fc1 + af * f0;
+      e.s = sim.stepper_.template at_force_point<Vec6>(fc1, f0);
       e.l1.setZero();
       e.fc1 = fc1;
       out.push_back(e);
@@ -258,7 +258,7 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::RigidFields {
   static void residual(Simulation& sim, int b, double& num, double& den) {
     Fields& F = sim.fields_[b];
     const auto extra = loaded_nodes(sim, b);
-    const auto r = detail::rigid_reduced_residual(F.mm, F.Q, F.f, sim.coef_.alpha_m, sim.coef_.alpha_f,
+    const auto r = detail::rigid_reduced_residual(F.mm, F.Q, F.f, sim.stepper_,
                                                   sim.opt_.mass_damping, F.g1, F.g0, extra);
     F.R = r.R;
     num += r.num;

@@ -31,7 +31,7 @@ template <class Element, class Integrator, class LinearSolver, class Contact>
 inline void Simulation<Element, Integrator, LinearSolver, Contact>::resolve_changed_contacts(std::span<const int> members) {
   if constexpr (BodyPlaneContactPolicy<Contact>) {
     if (opt_.contact_iterations <= 0 || static_) return;
-    const ContactView at_end{model_, x_, v_, t_state_, opt_.dt, &R_};
+    const ContactView at_end{model_, x_, v_, t_state_, stepper_.dt(), &R_};
     if (std::none_of(members.begin(), members.end(), [&](int b) { return contact_.body_plane_status_changed(at_end, b); }))
       return;  // the usual case, checked without allocating
     const size_t n = members.size();
@@ -40,7 +40,7 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::resolve_chan
     std::vector<typename Contact::BodyPlaneContacts> used(n), now(n);
     bool iterated = false;
     for (int it = 0; it < opt_.contact_iterations && !sums_[members.front()].solve_failed; ++it) {
-      const ContactView view{model_, x_, v_, t_state_, opt_.dt, &R_};
+      const ContactView view{model_, x_, v_, t_state_, stepper_.dt(), &R_};
       bool changed = false;
       for (size_t i = 0; i < n; ++i) {
         now[i] = contact_.body_plane_contacts(view, members[i]);
@@ -117,7 +117,7 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::remove_predi
 
 template <class Element, class Integrator, class LinearSolver, class Contact>
 inline void Simulation<Element, Integrator, LinearSolver, Contact>::set_body_contact_terms(detail::BodySystem& bs, const std::vector<NodalContactTangent>& tangents) {
-  const double kf = 1 - coef_.alpha_f, cf = coef_.gamma / (coef_.beta * opt_.dt);
+  const double kf = stepper_.stiffness_factor(), cf = stepper_.velocity_factor();
   bs.contact.clear();
   for (const auto& t : tangents) {
     const int local = local_index_[t.node];

@@ -15,12 +15,9 @@ namespace furniture_fem {
 template <class Element, class Integrator, class LinearSolver, class Contact>
 Simulation<Element, Integrator, LinearSolver, Contact>::Simulation(const Model& model, Integrator integrator,
                                                                   SimulationOptions options, Contact contact)
-    : model_(model), integrator_(integrator), opt_(options), coef_(integrator.coefficients()),
+    : model_(model), integrator_(integrator), opt_(options), stepper_(integrator.stepper(options.dt)),
       contact_(std::move(contact)) {
   model_.validate();
-  if (!(opt_.dt >= SimulationOptions::min_dt) || !std::isfinite(opt_.dt))
-    throw ModelError("simulation: dt must be finite and at least " + detail::fmt(SimulationOptions::min_dt) +
-                     " s (got " + detail::fmt(opt_.dt) + ")");
   if (opt_.max_impact_substeps < 1)
     throw ModelError("simulation: max_impact_substeps must be at least 1 (got " +
                      std::to_string(opt_.max_impact_substeps) + ")");
@@ -49,7 +46,7 @@ StepInfo Simulation<Element, Integrator, LinearSolver, Contact>::step() {
   const int n = substeps_for_impacts();
   divided_ = false;
   if (n <= 1) {
-    const StepInfo info = step_to(t_ + opt_.dt);
+    const StepInfo info = step_to(t_ + stepper_.dt());
     ++steps_;
     return info;
   }
@@ -62,12 +59,12 @@ StepInfo Simulation<Element, Integrator, LinearSolver, Contact>::step() {
   division_start_.R = rotations();
   division_start_.v = velocities();
   division_start_.a = accelerations();
-  const double dt = opt_.dt, t_end = t_ + dt;
+  const double dt = stepper_.dt(), t_end = t_ + dt;
   StepInfo info;
   set_step_length(dt / n);
   try {
     for (int i = 1; i <= n; ++i) {
-      const StepInfo sub = step_to(i == n ? t_end : t_ + opt_.dt);
+      const StepInfo sub = step_to(i == n ? t_end : t_ + stepper_.dt());
       info.iterations += sub.iterations;
       info.residual = std::max(info.residual, sub.residual);
       info.converged = info.converged && sub.converged;
@@ -111,8 +108,7 @@ StepInfo Simulation<Element, Integrator, LinearSolver, Contact>::step_to(double 
                                   non_finite_diagnosis());
   }
   StepKernel kernel{*this, t1};
-  const StepInfo info = step_with(integrator_.mode, kernel);
-  if (integrator_.mode == EquilibriumMode::carry_over) timed(timings_.contact, [&] { contact_at_end_of_step(); });
+  const StepInfo info = stepper_.do_step(kernel);
   if constexpr (requires { contact_.commit(); }) contact_.commit();
   t_ = t1;
   return info;

@@ -12,7 +12,7 @@ template <class Element, class Integrator, class LinearSolver, class Contact>
 inline void Simulation<Element, Integrator, LinearSolver, Contact>::contact_forces(double t, const Eigen::VectorXd& v, Eigen::VectorXd& f) {
   f.setZero();
   if constexpr (!std::is_same_v<Contact, NoContact>) {
-    const ContactView view{model_, x_, v, t, opt_.dt, &R_};
+    const ContactView view{model_, x_, v, t, stepper_.dt(), &R_};
     contact_.add_forces(view, f);
   }
   gather_contact_tangents();
@@ -23,7 +23,7 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::gather_conta
   if constexpr (ImplicitContactPolicy<Contact>) {
     for (auto& bs : systems_) bs.contact.clear();
     if (static_) return;
-    const double dt = opt_.dt, kf = 1 - coef_.alpha_f, cf = coef_.gamma / (coef_.beta * dt);
+    const double kf = stepper_.stiffness_factor(), cf = stepper_.velocity_factor();
     for (const auto& t : contact_.nodal_tangents()) {
       auto& bs = systems_[model_.node(t.node).body];
       const Mat3 k = kf * (t.K + cf * t.C);
@@ -205,7 +205,7 @@ inline auto Simulation<Element, Integrator, LinearSolver, Contact>::group_pair_n
       slot_of[node] = slot;
     });
   // The pairs' terms on the nodes' translations, sum over pairs of w_i w_j Kc, as 3 x 3 blocks.
-  const double kf = 1 - coef_.alpha_f, cf = coef_.gamma / (coef_.beta * opt_.dt);
+  const double kf = stepper_.stiffness_factor(), cf = stepper_.velocity_factor();
   std::unordered_map<std::int64_t, int> block_of;
   for (int k : ks) {
     const auto& p = pairs[k];
@@ -349,7 +349,7 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::contact_at_e
       }
     }
     contact_delta_.setZero();
-    const ContactView view{model_, x_, v_, t_state_, opt_.dt, &R_};
+    const ContactView view{model_, x_, v_, t_state_, stepper_.dt(), &R_};
     contact_.end_of_step(view, contact_delta_);
   }
 }

@@ -17,10 +17,10 @@ template <class Element, class Integrator, class LinearSolver, class Contact>
 inline int Simulation<Element, Integrator, LinearSolver, Contact>::substeps_for_impacts() const {
   if (opt_.max_impact_substeps <= 1 || static_) return 1;
   if constexpr (requires(const ContactView& view) { contact_.fastest_closing(view); }) {
-    const ContactView view{model_, x_, v_, t_, opt_.dt, &R_};
+    const ContactView view{model_, x_, v_, t_, stepper_.dt(), &R_};
     const double speed = contact_.fastest_closing(view);
-    if (!(speed * opt_.dt > opt_.impact_travel)) return 1;  // also NaN: the step's own check reports it
-    return static_cast<int>(std::min<double>(std::ceil(speed * opt_.dt / opt_.impact_travel), opt_.max_impact_substeps));
+    if (!(speed * stepper_.dt() > opt_.impact_travel)) return 1;  // also NaN: the step's own check reports it
+    return static_cast<int>(std::min<double>(std::ceil(speed * stepper_.dt() / opt_.impact_travel), opt_.max_impact_substeps));
   } else {
     return 1;
   }
@@ -28,7 +28,7 @@ inline int Simulation<Element, Integrator, LinearSolver, Contact>::substeps_for_
 
 template <class Element, class Integrator, class LinearSolver, class Contact>
 inline void Simulation<Element, Integrator, LinearSolver, Contact>::set_step_length(double dt) {
-  opt_.dt = dt;
+  stepper_ = integrator_.stepper(dt);
   for (auto& bs : systems_)
     if (!bs.rigid) {
       bs.needs_refresh = true;

@@ -25,9 +25,9 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::evaluate_bod
   // A rigid body's internal forces are zero from the start and never written: no pass to clear them.
   if (bs.rigid) return RigidBody::evaluate(bs);
   for (int n : bs.nodes) fint_.segment<6>(6 * n).setZero();
-  const double kf = static_ ? 1.0 : (1 - coef_.alpha_f);
+  const double kf = static_ ? 1.0 : stepper_.stiffness_factor();
   // Structural damping: c k_e (d - d_n) / dt on the element's deformations; its tangent c / dt k_e.
-  const double cd = static_ ? 0.0 : opt_.stiffness_damping / opt_.dt;
+  const double cd = static_ ? 0.0 : opt_.stiffness_damping / stepper_.dt();
   Vec12 f, fg;
   Mat12 k, kg;
   for (size_t idx = 0; idx < bs.elements.size(); ++idx) {
@@ -76,8 +76,7 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::evaluate_bod
     if (assemble) Kv[bs.diag_slot[6 * local_index_[sp.node] + sp.dof]] += kf * sp.k;
   }
   if (assemble) {
-    const double dt = opt_.dt;
-    const double mf = static_ ? 0.0 : coef_.mass_factor(dt, opt_.mass_damping);
+    const double mf = static_ ? 0.0 : stepper_.mass_factor(opt_.mass_damping);
     for (size_t k2 = 0; k2 < bs.nodes.size(); ++k2)
       for (int i = 0; i < 6; ++i) {
         const int ld = 6 * static_cast<int>(k2) + i;
@@ -127,16 +126,16 @@ inline auto Simulation<Element, Integrator, LinearSolver, Contact>::sum_bodies(d
 
 template <class Element, class Integrator, class LinearSolver, class Contact>
 inline void Simulation<Element, Integrator, LinearSolver, Contact>::residual_body(const detail::BodySystem& bs, const Eigen::VectorXd& fext1, double& num, double& den) {
-  const double am = coef_.alpha_m, af = coef_.alpha_f, c = opt_.mass_damping;
+  const double c = opt_.mass_damping;
   if (const int b = static_cast<int>(&bs - systems_.data()); fields_[b].on) return RigidFields::residual(*this, b, num, den);
   // A node's six DOFs at once (each value by the same operations in the same order as DOF by DOF,
   // so the same bits; the sums below stay in DOF order).
   for (size_t k = 0; k < bs.nodes.size(); ++k) {
     const int i = 6 * bs.nodes[k];
     const Vec6 fx = fext1.segment<6>(i), fc = fc1_.segment<6>(i), fi = fint_.segment<6>(i), m = mass_.segment<6>(i);
-    const Vec6 inertia = m.cwiseProduct((1 - am) * a_.segment<6>(i) + am * an_.segment<6>(i));
-    const Vec6 damping = (c * m).cwiseProduct((1 - af) * v_.segment<6>(i) + af * vn_.segment<6>(i));
-    Vec6 ri = (1 - af) * (fx + fc - fi) + af * fnet0_.segment<6>(i) - inertia - damping;
+    const Vec6 inertia = m.cwiseProduct(stepper_.template at_inertia_point<Vec6>(a_.segment<6>(i), an_.segment<6>(i)));
+    const Vec6 damping = (c * m).cwiseProduct(stepper_.template at_force_point<Vec6>(v_.segment<6>(i), vn_.segment<6>(i)));
+    Vec6 ri = stepper_.template at_force_point<Vec6>(fx + fc - fi, fnet0_.segment<6>(i)) - inertia - damping;
     const Vec6 scale = fx.cwiseProduct(fx) + fi.cwiseProduct(fi) + inertia.cwiseProduct(inertia) + fc.cwiseProduct(fc);
     for (int j = 0; j < 6; ++j) {
       if (bs.fixed[6 * k + j]) ri[j] = 0.0;
@@ -157,7 +156,6 @@ inline double Simulation<Element, Integrator, LinearSolver, Contact>::residual()
 template <class Element, class Integrator, class LinearSolver, class Contact>
 inline void Simulation<Element, Integrator, LinearSolver, Contact>::predict_body(int b, const Loads& loads) {
   auto& bs = systems_[b];
-  const double dt = opt_.dt;
   if (fields_[b].refit) RigidFields::refit(*this, b);
   if (fields_[b].on) {
     RigidFields::predict(*this, b, loads);
@@ -171,8 +169,8 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::predict_body
     vn_.segment<6>(i) = v_.segment<6>(i);
     an_.segment<6>(i) = a_.segment<6>(i);
     Du_.segment<6>(i).setZero();
-    v_contact_.segment<6>(i) = vn_.segment<6>(i) + dt * an_.segment<6>(i);
-    newmark_rates(i, dt);
+    v_contact_.segment<6>(i) = stepper_.template contact_velocity<Vec6>(vn_.segment<6>(i), an_.segment<6>(i));
+    newmark_rates(i);
   }
   if (bs.rigid) RigidBody::start_step(*this, bs);
   contact_iterated_[b] = 0;
@@ -181,7 +179,6 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::predict_body
 
 template <class Element, class Integrator, class LinearSolver, class Contact>
 inline void Simulation<Element, Integrator, LinearSolver, Contact>::kinematics_body(int b) {
-  const double dt = opt_.dt;
   auto& bs = systems_[b];
   if (fields_[b].on) return RigidFields::kinematics(*this, b);
   // Every node of a rigid body turns by the same increment: one exponential for all of them.
@@ -190,7 +187,7 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::kinematics_b
   bs.rigid_at_start = false;
   for (int n : bs.nodes) {
     const int i = 6 * n;
-    newmark_rates(i, dt);
+    newmark_rates(i);
     u_[n] = u0_[n] + Du_.segment<3>(i);
     x_[n] = model_.node(n).X + u_[n];
     R_[n] = (same_turn ? turn : detail::rotation_exp(Du_.segment<3>(i + 3))) * R0_[n];
@@ -198,15 +195,15 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::kinematics_b
 }
 
 template <class Element, class Integrator, class LinearSolver, class Contact>
-inline void Simulation<Element, Integrator, LinearSolver, Contact>::newmark_rates(int i, double dt) {
-  const Vec6 vn = vn_.segment<6>(i), an = an_.segment<6>(i);
-  a_.segment<6>(i) = coef_.acceleration<Vec6>(Du_.segment<6>(i), vn, an, dt);
-  v_.segment<6>(i) = coef_.velocity<Vec6>(vn, an, a_.segment<6>(i), dt);
+inline void Simulation<Element, Integrator, LinearSolver, Contact>::newmark_rates(int i) {
+  const auto rates = stepper_.template update<Vec6>(Du_.segment<6>(i), vn_.segment<6>(i), an_.segment<6>(i));
+  a_.segment<6>(i) = rates.acceleration;
+  v_.segment<6>(i) = rates.velocity;
 }
 
 template <class Element, class Integrator, class LinearSolver, class Contact>
 inline auto Simulation<Element, Integrator, LinearSolver, Contact>::step_work() const -> StepWork {
-  return {static_, opt_.dt, coef_.gamma};
+  return {static_, stepper_.dt(), stepper_.end_force_share()};
 }
 
 template <class Element, class Integrator, class LinearSolver, class Contact>

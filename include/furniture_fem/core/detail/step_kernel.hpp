@@ -53,6 +53,9 @@ class Simulation<Element, Integrator, LinearSolver, Contact>::StepKernel {
     info.shifted_points = total.shifted;
     return info;
   }
+  void contact_at_end_of_step() {
+    sim_.timed(sim_.timings_.contact, [&] { sim_.contact_at_end_of_step(); });
+  }
   void evaluate_residuals() {
     sim_.body_sweep([&](int b) {
       BodyStepSums& s = sim_.sums_[b];
