@@ -6,6 +6,7 @@
 #include <furniture_fem/scene/scene.hpp>
 #include <furniture_fem/scene/scene_simulation.hpp>
 
+#include "../support/floor_probes.hpp"
 #include "../support/input_errors.hpp"
 #include "../support/test_files.hpp"
 
@@ -38,18 +39,11 @@ ContactParams floor_params(const SceneSpec& s) {
   return scene_body_contacts(s, model, items).at(items.at(0).body).floor;
 }
 
-// The law's force on a node 5 mm into the floor, approaching, sliding slowly (sticking) or fast (slipping)
-// at an angle to the item's long axis.
+// The law's force on a node 5 mm into the floor (ffem_test::floor_probes).
 template <class Law>
 std::vector<Vec3> floor_forces(const ContactParams& p) {
   std::vector<Vec3> out;
-  for (const Vec3& v : {Vec3(3e-5, 4e-5, -2e-3), Vec3(0.3, 0.4, -0.01)}) {
-    ContactKinematics k;
-    k.L = 0.025;
-    k.l = 0.02;
-    k.v = v;
-    k.long_axis = Vec3::UnitX();
-    k.dt = 1e-3;
+  for (const ContactKinematics& k : ffem_test::floor_probes(0.005)) {
     ContactState state;
     out.push_back(Law{}.force(k, p, state).on_a);
   }

@@ -179,20 +179,21 @@ std::string law_name_list(Keep&& keep) {
 // The override keys and the laws that read them, as markdown: the shared keys, then each law's own
 // (docs/scene/scene_file.md holds the built-in laws' table; tests/scene checks that the page holds it).
 inline std::string contact_law_table(const ContactLawRegistry& registry = builtin_contact_law_registry()) {
+  // Appended piece by piece: GCC 12 warns on + chains of strings here (-Wrestrict, a false alarm).
   std::string head = "| key | unit | range |", rule = "|---|---|---|";
   for (const auto& law : registry.laws()) {
-    head += " " + std::string(law.name) + " |";
-    rule += "---|";
+    head.append(" ").append(law.name).append(" |");
+    rule.append("---|");
   }
-  std::string md = head + " meaning |\n" + rule + "---|\n";
-  const auto row = [&](std::string_view key, std::string_view unit, std::string range, std::string_view meaning) {
-    md += "| `" + std::string(key) + "` | " + std::string(unit) + " | " + range + " |";
-    for (const auto& law : registry.laws()) md += law.reads(key) ? " yes |" : " |";
-    md += " " + std::string(meaning) + " |\n";
+  std::string md = head;
+  md.append(" meaning |\n").append(rule).append("---|\n");
+  const auto row = [&](std::string_view key, std::string_view unit, const std::string& range, std::string_view meaning) {
+    md.append("| `").append(key).append("` | ").append(unit).append(" | ").append(range).append(" |");
+    for (const auto& law : registry.laws()) md.append(law.reads(key) ? " yes |" : " |");
+    md.append(" ").append(meaning).append(" |\n");
   };
   for (const auto& p : contact_parameters)
-    row(p.key, p.unit, std::string(p.lo_exclusive ? "(" : "[") + detail::fmt(p.lo) + ", " + detail::fmt(p.hi) + "]",
-        p.meaning);
+    row(p.key, p.unit, detail::range_text(p.lo, p.hi, p.lo_exclusive), p.meaning);
   for (const auto& law : registry.laws())
     for (const auto& p : law.own_parameters) row(p.key, p.unit, p.range_text(), p.meaning);
   return md;

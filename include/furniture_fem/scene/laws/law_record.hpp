@@ -68,6 +68,15 @@ inline const ContactParameter* find_contact_parameter(std::string_view key) {
   return nullptr;
 }
 
+namespace detail {
+// "(lo, hi]" or "[lo, hi]", appended piece by piece: GCC 12 warns on a + chain of strings here
+// (-Wrestrict, a false alarm).
+inline std::string range_text(double lo, double hi, bool lo_exclusive) {
+  std::string text(lo_exclusive ? "(" : "[");
+  return text.append(fmt(lo)).append(", ").append(fmt(hi)).append("]");
+}
+}  // namespace detail
+
 // A parameter a law declares of its own, beyond the shared keys above: a key of contact.floor / wall /
 // item, read by the law's force from ContactParams::law_params[slot], slot its place in the record's
 // own_parameters. Every item starts from default_value (the record's item_base may set it from the item);
@@ -82,9 +91,7 @@ struct LawParameter {
   bool per_node = false;     // a force coefficient (N, N/m^k, N s/m ...): scaled with the node share
   bool floor_only = false;   // only contact.floor takes it
 
-  std::string range_text() const {
-    return std::string(lo_exclusive ? "(" : "[") + detail::fmt(lo) + ", " + detail::fmt(hi) + "]";
-  }
+  std::string range_text() const { return detail::range_text(lo, hi, lo_exclusive); }
   bool accepts(double v) const { return (lo_exclusive ? v > lo : v >= lo) && v <= hi; }
 };
 
