@@ -49,7 +49,7 @@ std::string final_state_line(const std::string& name, double slide, double tilt)
 
 // Ours: the scene's simulation stepped through its duration on one thread (outputs aside).
 RunResult run_furniture_fem(const SceneSpec& spec) {
-  SceneSimulation<PaperAnisotropicFloorLaw, DirectLdltSolver> scene(spec, 0, 1);
+  SceneSimulation<DirectLdltSolver> scene(spec, 0, 1);
   auto& sim = *scene.sim;
   const auto t0 = clock_type::now();
   sim.run_until(spec.duration);

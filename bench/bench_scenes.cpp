@@ -45,7 +45,7 @@ SceneSpec copies_of_configuration3(int copies) {
 
 // refresh 0: the scene's default (every 0.1 s); threads 0: all hardware threads.
 void run_steps(benchmark::State& state, const SceneSpec& spec, int refresh, int threads = 0) {
-  SceneSimulation<PaperAnisotropicFloorLaw, DirectLdltSolver> scene(spec, refresh, threads);
+  SceneSimulation<DirectLdltSolver> scene(spec, refresh, threads);
   auto& sim = *scene.sim;
   for (int i = 0; i < 20; ++i) sim.step();  // settle, first factorisations
   const StepTimings t0 = sim.timings();
@@ -120,7 +120,7 @@ BENCHMARK(BM_ConfigurationCopies)
 // copy comes from the memory the scene occupies (one copy's data stays in the caches from step to
 // step, eight copies' data does not), not from the algorithm.
 void BM_SeparateScenes(benchmark::State& state) {
-  using Scene = SceneSimulation<PaperAnisotropicFloorLaw, DirectLdltSolver>;
+  using Scene = SceneSimulation<DirectLdltSolver>;
   const int threads = static_cast<int>(state.range(1));
   std::vector<std::unique_ptr<Scene>> scenes;
   for (int k = 0; k < state.range(0); ++k) scenes.push_back(std::make_unique<Scene>(copies_of_configuration3(1), 0, threads));
@@ -170,7 +170,7 @@ void BM_RoomSetup(benchmark::State& state) {
   for (auto _ : state) {
     const auto t0 = std::chrono::steady_clock::now();
     validate(spec);
-    SceneSimulation<PaperLaw, DirectLdltSolver> scene(spec);
+    SceneSimulation<DirectLdltSolver> scene(spec);
     benchmark::DoNotOptimize(scene.sim.get());
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }

@@ -127,7 +127,7 @@ Result run(const Variant& v, double duration, double pga) {
   const SceneSpec spec = scene_for(v, duration, pga);
   Result r;
   const auto t0 = std::chrono::steady_clock::now();
-  SceneSimulation<PaperAnisotropicFloorLaw, Solver, Element> scene(spec, v.refresh, 1);
+  SceneSimulation<Solver, Element> scene(spec, v.refresh, 1);
   auto& sim = *scene.sim;
   const Model& model = *scene.model;
   r.elements = model.num_elements();

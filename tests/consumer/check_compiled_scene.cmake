@@ -1,6 +1,6 @@
 # A program linked to furniture_fem::scene_compiled that includes scene/run_scene.hpp takes parse_scene
 # and run_scene from the library: both undefined (U) in its objects, not compiled there (weak, W), and
-# none of the contact laws' runs (detail::run_law), no Simulation and no CGAL code compiled in them.
+# no scene run (detail::run_composed, detail::run_checked_scene), no Simulation and no CGAL code compiled in them.
 # -DOBJECTS=<the program's object files>
 string(REPLACE "," ";" objects "${OBJECTS}")
 execute_process(COMMAND nm -C ${objects} OUTPUT_VARIABLE symbols RESULT_VARIABLE rc)
@@ -16,12 +16,12 @@ foreach(entry run_scene parse_scene)
     list(APPEND problems "furniture_fem::${entry} compiled in the program")
   endif()
 endforeach()
-string(REGEX MATCHALL "[^\n]*furniture_fem::detail::run_law<[0-9]+ul>\\(" laws "${symbols}")
+string(REGEX MATCHALL " [TW] [^\n]*furniture_fem::detail::run_(composed<[^\n]*>|checked_scene)\\(" laws "${symbols}")
 string(REGEX MATCHALL " [TW] [^\n]*(furniture_fem::Simulation<|CGAL::)" heavy "${symbols}")
 list(LENGTH laws n_laws)
 list(LENGTH heavy n_heavy)
 if(n_laws GREATER 0)
-  list(APPEND problems "${n_laws} references to the contact laws' runs (of ${LAWS})")
+  list(APPEND problems "${n_laws} scene runs compiled in the program")
 endif()
 if(n_heavy GREATER 0)
   list(GET heavy 0 first)
@@ -31,4 +31,4 @@ if(problems)
   list(JOIN problems "; " text)
   message(FATAL_ERROR "${objects}: ${text}")
 endif()
-message(STATUS "parse_scene, run_scene and the ${LAWS} contact laws' runs come from the compiled scene runner")
+message(STATUS "parse_scene, run_scene and the scene run come from the compiled scene runner")

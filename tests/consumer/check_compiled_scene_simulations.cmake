@@ -1,5 +1,5 @@
 # Units linked to furniture_fem::scene_compiled that build a scene's simulation themselves
-# (SceneSimulation<Law, Solver>; test_points_and_block among test_scene's) take that simulation's
+# (SceneSimulation<Solver>; test_points_and_block among test_scene's) take that simulation's
 # constructor and step from the library (scene/scene_simulation.hpp declares them extern): undefined
 # (U) in their objects, compiled (weak, W) in none. -DOBJECTS=<test_scene's object files (its batches
 # of files, or one per file)>.

@@ -1,4 +1,4 @@
-// The scene contact laws, walked from their one list (scene/laws/law_list.hpp): every law's name through
+// The built-in scene contact laws, walked from their one list (scene/laws/law_list.hpp): every law's name through
 // the reader and the writer, every key it declares accepted and felt in its force, every key it does not
 // declare a named error, and docs/scene/scene_file.md's key table the generated one, its law row complete.
 #include <catch2/catch.hpp>
@@ -6,6 +6,7 @@
 #include <furniture_fem/scene/scene.hpp>
 #include <furniture_fem/scene/scene_simulation.hpp>
 
+#include "../support/floor_probes.hpp"
 #include "../support/input_errors.hpp"
 #include "../support/test_files.hpp"
 
@@ -38,18 +39,11 @@ ContactParams floor_params(const SceneSpec& s) {
   return scene_body_contacts(s, model, items).at(items.at(0).body).floor;
 }
 
-// The law's force on a node 5 mm into the floor, approaching, sliding slowly (sticking) or fast (slipping)
-// at an angle to the item's long axis.
+// The law's force on a node 5 mm into the floor (ffem_test::floor_probes).
 template <class Law>
 std::vector<Vec3> floor_forces(const ContactParams& p) {
   std::vector<Vec3> out;
-  for (const Vec3& v : {Vec3(3e-5, 4e-5, -2e-3), Vec3(0.3, 0.4, -0.01)}) {
-    ContactKinematics k;
-    k.L = 0.025;
-    k.l = 0.02;
-    k.v = v;
-    k.long_axis = Vec3::UnitX();
-    k.dt = 1e-3;
+  for (const ContactKinematics& k : ffem_test::floor_probes(0.005)) {
     ContactState state;
     out.push_back(Law{}.force(k, p, state).on_a);
   }
@@ -73,7 +67,7 @@ static_assert(!SceneContactLaw<MisspeltSceneLaw>);
 
 template <class F>
 void for_each_law(F&& f) {
-  [&]<class... R>(LawList<R...>) { (f.template operator()<R>(), ...); }(scene_contact_laws{});
+  [&]<class... R>(LawList<R...>) { (f.template operator()<R>(), ...); }(builtin_contact_laws{});
 }
 
 }  // namespace
@@ -119,9 +113,9 @@ TEST_CASE("every contact law runs with either linear solver, to the same motion"
     const std::string name(R::name);
     INFO("law " << name);
     SceneSpec s = parse_scene_json(law_scene({{"law", name}}), "laws.json");
-    SceneSimulation<typename R::law, DirectLdltSolver> direct(s, 1, 1);
+    SceneSimulation<DirectLdltSolver> direct(s, 1, 1);
     s.solver = SolverKind::cg;
-    SceneSimulation<typename R::law, ConjugateGradientSolver> cg(s, 1, 1);
+    SceneSimulation<ConjugateGradientSolver> cg(s, 1, 1);
     for (int i = 0; i < 300; ++i) {
       direct.sim->step();
       cg.sim->step();
@@ -190,7 +184,8 @@ TEST_CASE("the contact key table of docs/scene/scene_file.md is the generated on
   const auto row = page.find("| `law` | string |");
   REQUIRE(row != std::string::npos);
   const std::string law_row = page.substr(row, page.find('\n', row) - row);
-  for (const auto& law : scene_law_infos) CHECK_THAT(law_row, Contains("`" + std::string(law.name) + "`"));
+  const ContactLawRegistry builtin = builtin_contact_law_registry();
+  for (const auto& law : builtin.laws()) CHECK_THAT(law_row, Contains("`" + std::string(law.name) + "`"));
 }
 
 }  // namespace contact_laws_tests

@@ -186,7 +186,7 @@ std::pair<Vec3, Vec3> block_travel(double a_over_g, const std::string& law) {
   j["contact"] = {{"law", law}};
   const SceneSpec spec = parse_scene_json(j, "slide.json");
   validate(spec);
-  SceneSimulation<Law, DirectLdltSolver> scene(spec);
+  SceneSimulation<DirectLdltSolver> scene(spec);
   REQUIRE(scene.rigid_bodies.size() == 1);
   const int hub = scene.items[0].marker("cog")->node;
   scene.sim->run_until(0.2);
@@ -244,7 +244,7 @@ std::pair<double, double> block_tilts(double W, double H, double h, const json& 
   j["contact"] = {{"law", "stiff"}};
   const SceneSpec spec = parse_scene_json(j, "tip.json");
   validate(spec);
-  SceneSimulation<SpringDashpotLaw, DirectLdltSolver> scene(spec);  // the `stiff` law's type
+  SceneSimulation<DirectLdltSolver> scene(spec);  // the `stiff` law's type
   const int hub = scene.items[0].marker("cog")->node;
   double largest = 0, tilt = 0;
   while (scene.sim->time() < duration - 1e-9) {
@@ -346,7 +346,7 @@ double tall_cabinet_largest_tilt(double level, bool forward, const std::string& 
                   {"outputs", {{"figures", false}}}};
   const SceneSpec spec = parse_scene_json(j, "tall.json");
   validate(spec);
-  SceneSimulation<SpringDashpotLaw, DirectLdltSolver> scene(spec);
+  SceneSimulation<DirectLdltSolver> scene(spec);
   const int node = scene.model->body(scene.items[0].body).nodes.front();
   double largest = 0;
   while (scene.sim->time() < 2.5 - 1e-9) {

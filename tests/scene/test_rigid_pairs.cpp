@@ -40,7 +40,7 @@ json stacked_scene(const json& x_points, double mu_item, const std::string& law,
 template <class Law>
 struct Stack {
   SceneSpec spec;
-  SceneSimulation<Law, DirectLdltSolver> scene;
+  SceneSimulation<DirectLdltSolver> scene;
   int lower, upper;             // bodies
   int lower_top, upper_bottom;  // a node of each at the interface (a rigid body's lean moves it least)
   explicit Stack(const json& j) : spec(parse_scene_json(j, "stack.json")), scene((validate(spec), spec)) {

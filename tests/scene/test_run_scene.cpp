@@ -797,7 +797,7 @@ TEST_CASE("the explicit contact's stable step is estimated from the scene's law,
                                               {"contact", {{"law", law}, {"implicit", implicit}}},
                                               {"duration", 0.1}},
                                          "estimate.json");
-    SceneSimulation<Law, DirectLdltSolver> scene(s, 0, 1);
+    SceneSimulation<DirectLdltSolver> scene(s, 0, 1);
     const ContactStepEstimate est = contact_step_estimate(
         *scene.sim, *scene.model, scene.items, scene_body_contacts(s, *scene.model, scene.items), s.contact.law);
     // The same from the closed forms of the two springs.
@@ -1085,7 +1085,7 @@ TEST_CASE("a large mesh obstacle far from every item costs little of the steps",
     SceneSpec s = parse_scene_json(scene, dir + "/scene.json");
     s.base_dir = dir;
     validate(s);
-    SceneSimulation<PaperLaw, DirectLdltSolver> sim(s, 0, 1);
+    SceneSimulation<DirectLdltSolver> sim(s, 0, 1);
     for (int k = 0; k < 50; ++k) sim.sim->step();
     std::vector<Vec3> x;
     for (int n = 0; n < sim.model->num_nodes(); ++n) x.push_back(sim.sim->position(n));

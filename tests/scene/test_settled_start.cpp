@@ -145,10 +145,7 @@ TEST_CASE("a stop request while the items settle ends the run at t = 0, with no 
   o.stop = &stop;
   // Past run_scene's own look at the request once the motion is read (which ends a run there, nothing
   // written): the law's run, as when the request comes while the model is built.
-  RunSummary r;
-  REQUIRE(visit_scene_law(spec.contact.law, [&]<class R>() {
-    r = detail::run_law<law_kind<R>.index>(spec, o, {}, detail::RunStart{});
-  }));
+  const RunSummary r = detail::run_checked_scene(spec, o, {}, detail::RunStart{});
   CHECK(r.status == "stopped");
   CHECK(r.steps == 0);
   CHECK(r.t_end == 0.0);

@@ -44,7 +44,7 @@ inline std::string fresh_dir(const std::string& name) {
 }
 
 // The paper's law with anisotropic floor friction (the configurations' choice), direct solver.
-using Scene = SceneSimulation<PaperAnisotropicFloorLaw, DirectLdltSolver>;
+using Scene = SceneSimulation<DirectLdltSolver>;
 
 struct ItemOutcome {
   std::string name;

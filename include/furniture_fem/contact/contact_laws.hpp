@@ -17,6 +17,7 @@
 #include <array>
 #include <cmath>
 #include <concepts>
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -63,6 +64,13 @@ struct ContactParams {
   double c_lin = 0;       // N s/m: viscous normal damping (ViscousDamping)
   double k_hc = 0;        // N/m^1.5: Hunt-Crossley stiffness (HuntCrossley)
   double hc_damping = 0;  // s/m: Hunt-Crossley damping factor (HuntCrossley)
+  // A registered law's own parameters (scene/laws/law_record.hpp, LawParameter): slot i holds its
+  // record's own_parameters[i], set once per item at set-up. The built-in laws use none (all 0).
+  static constexpr std::size_t max_law_params = 4;
+  std::array<double, max_law_params> law_params{};
+  // Bit i set: law_params[i] is a force coefficient, scaled with a contact's share of nodes as alpha is
+  // (RoomContact's support points; LawParameter::per_node).
+  unsigned law_params_per_node = 0;
 
   // Every field, named: validate() checks each and pair() combines each, so a new field is seen by both.
   static constexpr auto named_fields() {
@@ -94,6 +102,8 @@ struct ContactParams {
   static ContactParams pair(const ContactParams& a, const ContactParams& b) {
     ContactParams p;
     for (const auto& [name, field] : named_fields()) p.*field = 0.5 * (a.*field + b.*field);
+    for (std::size_t i = 0; i < max_law_params; ++i) p.law_params[i] = 0.5 * (a.law_params[i] + b.law_params[i]);
+    p.law_params_per_node = a.law_params_per_node | b.law_params_per_node;
     return p;
   }
 

@@ -755,6 +755,8 @@ class RoomContact {
   // The parameters of a contact standing for `share` nodes: every force and tangent `share` times one node's.
   static ContactParams scaled_penalty(ContactParams p, double share) {
     for (double* f : {&p.alpha, &p.Dc, &p.k_lin, &p.c_lin, &p.k_t, &p.c_t, &p.k_hc}) *f *= share;
+    for (unsigned i = 0, bits = p.law_params_per_node; bits != 0; ++i, bits >>= 1)
+      if (bits & 1u) p.law_params[i] *= share;
     return p;
   }
 

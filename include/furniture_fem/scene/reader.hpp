@@ -59,22 +59,45 @@ inline ItemParams parse_item_params(const ObjectReader& r, const ItemKindEntry& 
   return p;
 }
 
-// The override keys of one pair kind: every key may stand there (floor-only keys on the floor), and a
-// key the law does not declare is an error naming the law.
-inline ContactOverrides parse_contact_overrides(const ObjectReader& r, ContactLawKind law, bool is_floor) {
+// The override keys of one pair kind: the shared keys and the law's own (floor-only keys on the floor);
+// a key the law does not declare is an error naming the key and the law.
+inline ContactOverrides parse_contact_overrides(const ObjectReader& r, ContactLawKind kind, bool is_floor) {
+  const SceneLawInfo& law = scene_law(kind);
   ContactOverrides o;
   std::vector<std::string_view> allowed;
   for (const auto& p : contact_parameters)
     if (is_floor || !p.floor_only) allowed.push_back(p.key);
-  r.allow_only(allowed, "contact parameter");
+  for (const auto& p : law.own_parameters)
+    if (is_floor || !p.floor_only) allowed.push_back(p.key);
+  // Another registered law's own key: not this law's (allow_only would call it unknown).
+  for (const auto& other : contact_law_registry().laws())
+    for (const auto& p : other.own_parameters)
+      if (r.has(p.key) && !law.reads(p.key))
+        r.fail(r.path(p.key), "not used by the contact law \"" + std::string(law.name) + "\"");
+  r.allow_only(allowed, "contact parameter of the contact law \"" + std::string(law.name) + "\"");
   for (const auto& p : contact_parameters) {
     if (!r.has(p.key)) continue;
-    if (!scene_law(law).reads(p.key))
-      r.fail(r.path(p.key), "not used by the contact law \"" + enum_name(law_names, law) + "\"");
+    if (!law.reads(p.key)) r.fail(r.path(p.key), "not used by the contact law \"" + std::string(law.name) + "\"");
     o.*(p.field) = r.optional_number(p.key);
     read_range(r, p.key, p.lo, p.hi, p.lo_exclusive);
   }
+  for (const auto& p : law.own_parameters) {
+    if (!r.has(p.key)) continue;
+    const double value = r.number(p.key, p.default_value);
+    if (!p.accepts(value))
+      r.fail(r.path(p.key), "must lie in " + p.range_text() + " (got " + fmt(value) + ", contact law \"" +
+                                std::string(law.name) + "\")");
+    o.own[std::string(p.key)] = value;
+  }
   return o;
+}
+
+// contact.law: a registered law's name (an unknown name lists the registered ones).
+inline ContactLawKind parse_contact_law(const ObjectReader& r, ContactLawKind fallback) {
+  const auto name = r.optional_string("law");
+  if (!name) return fallback;
+  if (const auto kind = contact_law_kind(*name)) return *kind;
+  r.fail(r.path("law"), "unknown contact law \"" + *name + "\"; expected one of: " + contact_law_registry().names());
 }
 
 // `v`, the value of `key`, within scene_reach of `centre` (each coordinate): "<what> must lie within
@@ -326,7 +349,7 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
     const ObjectReader c = r.object("contact");
     c.allow_only({"law", "implicit", "velocity_regularisation", "stick_length", "plane_contact_at", "rigid_pairs",
                    "flexible_pairs", "start", "floor", "wall", "item"});
-    s.contact.law = c.enumeration("law", detail::law_names, s.contact.law, "contact law");
+    s.contact.law = detail::parse_contact_law(c, s.contact.law);
     const SceneLawInfo& law = scene_law(s.contact.law);
     if (c.has("implicit"))
       s.contact.implicit = c.enumeration("implicit", detail::implicit_contact_names, implicit_contact(s.contact),

@@ -3,8 +3,8 @@
 //
 //   RunSummary run_scene(const SceneSpec&, const RunOptions& = {}, const std::vector<RunObserver*>& extra = {})
 //
-// Builds the scene's simulation (the contact law and the linear solver are compile-time policies,
-// picked here from the scene's runtime choice; only the stepping is instantiated per combination),
+// Builds the scene's simulation (the contact law is the registered law's kernel, chosen at run time; the
+// linear solver a compile-time policy, picked here from the scene's choice),
 // then steps it, calling the observers (observer.hpp) at the start, after every step and at the end:
 // the standard ones picked from the scene's outputs and the options (observers.hpp), then `extra`. A
 // stop request (Ctrl-C), a diverging step or a step that creates energy ends the run early, with
@@ -531,13 +531,13 @@ inline constexpr double settled_quiet_time = 0.2, settling_max_time = 5.0;
 // slower than settled_speed for settled_quiet_time (at most settling_max_time), then loads its state into
 // `sim` at rest at t = 0 (Simulation::restart_at_rest). A stop request ends it before its next step
 // (`interrupted`, `sim` left as placed).
-template <class Law, class Solver>
-SettledStart settle_at_rest(const SceneSpec& spec, int threads, typename SceneSimulation<Law, Solver>::Sim& sim,
+template <class Solver>
+SettledStart settle_at_rest(const SceneSpec& spec, int threads, typename SceneSimulation<Solver>::Sim& sim,
                             const std::atomic<bool>* stop = nullptr) {
   SceneSpec settling_spec = spec;
   settling_spec.contact.velocity_regularisation =
       std::max(spec.contact.velocity_regularisation, settling_velocity_regularisation);
-  SceneSimulation<Law, Solver> settling(settling_spec, 0, threads);
+  SceneSimulation<Solver> settling(settling_spec, 0, threads);
   auto& s = *settling.sim;
   s.set_table_acceleration([](double) { return Vec3::Zero(); });
   int fastest_node = 0;
@@ -575,8 +575,8 @@ SettledStart settle_at_rest(const SceneSpec& spec, int threads, typename SceneSi
 }
 
 // The explicit contact's stable step of a built scene, checked against its dt (check_contact_step).
-template <class Law, class Solver>
-ContactStepEstimate checked_contact_step(const SceneSpec& spec, const SceneSimulation<Law, Solver>& scene) {
+template <class Solver>
+ContactStepEstimate checked_contact_step(const SceneSpec& spec, const SceneSimulation<Solver>& scene) {
   const ContactStepEstimate est =
       contact_step_estimate(*scene.sim, *scene.model, scene.items,
                             scene_body_contacts(spec, *scene.model, scene.items), spec.contact.law);
@@ -593,40 +593,37 @@ inline RunSummary stopped_before_start(const SceneSpec& spec, const RunOptions& 
   return sum;
 }
 
-// The only code instantiated per contact law and linear solver: building the simulation and its view.
-template <class Law, class Solver>
+// The only code instantiated per linear solver: building the simulation and its view (the contact law
+// is the scene's registered law, a run-time kernel).
+template <class Solver>
 RunSummary run_composed(const SceneSpec& spec, const RunOptions& opt, const std::vector<RunObserver*>& extra,
                         const RunStart& t_start) {
-  SceneSimulation<Law, Solver> scene(spec, 0, opt.threads);
+  SceneSimulation<Solver> scene(spec, 0, opt.threads);
   const ContactStepEstimate estimate = checked_contact_step(spec, scene);  // before settling, too
   std::optional<SettledStart> settled;
   // A run going on from its checkpoint has its settled state there.
   if (spec.contact.start == ContactStart::settled && !opt.resume)
-    settled = settle_at_rest<Law, Solver>(spec, opt.threads, *scene.sim, opt.stop);
-  SimulationViewOf<typename SceneSimulation<Law, Solver>::Sim> view(*scene.sim);
+    settled = settle_at_rest<Solver>(spec, opt.threads, *scene.sim, opt.stop);
+  SimulationViewOf<typename SceneSimulation<Solver>::Sim> view(*scene.sim);
   return run_observed(
       spec, opt,
       {*scene.model, scene.items, scene.motion, scene.rigid_bodies, view, scene.motion_scale, settled, estimate}, extra,
       t_start);
 }
 
-// The run of the law at index I of scene_contact_laws, with the scene's linear solver (any law with either
-// solver: the law is a kernel of the one scene simulation). The compiled scene runner (target
-// furniture_fem::scene_compiled, src/scene/run_scene.cpp: every law instantiated once) defines
-// FURNITURE_FEM_COMPILED_SCENE for its users, who then see this declaration only and compile none of
-// the laws' simulations; header-only use (furniture_fem::scene) instantiates them here.
-template <std::size_t I>
-RunSummary run_law(const SceneSpec& spec, const RunOptions& opt, const std::vector<RunObserver*>& extra,
-                   const RunStart& t_start);
-
-#ifndef FURNITURE_FEM_COMPILED_SCENE
-template <std::size_t I>
-RunSummary run_law(const SceneSpec& spec, const RunOptions& opt, const std::vector<RunObserver*>& extra,
-                   const RunStart& t_start) {
-  using R = scene_contact_laws::at<I>;
-  if (spec.solver != SolverKind::direct)
-    return run_composed<typename R::law, ConjugateGradientSolver>(spec, opt, extra, t_start);
-  return run_composed<typename R::law, DirectLdltSolver>(spec, opt, extra, t_start);
+// The run of a checked scene with its linear solver, whatever its law (a run-time kernel: every law with
+// either solver, a law registered by the user's program too). The compiled scene runner (target
+// furniture_fem::scene_compiled, src/scene/run_scene.cpp) defines it once and defines
+// FURNITURE_FEM_COMPILED_SCENE for its users, who then see this declaration only and compile none of the
+// simulation; header-only use (furniture_fem::scene) defines it here.
+#ifdef FFEM_SCENE_DECLARED_ONLY
+RunSummary run_checked_scene(const SceneSpec& spec, const RunOptions& opt, const std::vector<RunObserver*>& extra,
+                             const RunStart& t_start);
+#else
+FFEM_SCENE_ENTRY_INLINE RunSummary run_checked_scene(const SceneSpec& spec, const RunOptions& opt,
+                                                     const std::vector<RunObserver*>& extra, const RunStart& t_start) {
+  if (spec.solver != SolverKind::direct) return run_composed<ConjugateGradientSolver>(spec, opt, extra, t_start);
+  return run_composed<DirectLdltSolver>(spec, opt, extra, t_start);
 }
 #endif
 
@@ -651,17 +648,13 @@ FFEM_SCENE_ENTRY_INLINE void check_run_start(const SceneSpec& spec, const RunOpt
 // an item at t = 0 (detail::check_obstacles_clear) and a dt too long for the explicit contact
 // (check_contact_step). A study checks each variant's scene with it before its first run.
 FFEM_SCENE_ENTRY_INLINE void check_scene_model(const SceneSpec& spec) {
-  const auto build = [&]<class R>() {
-    using Law = typename R::law;
-    if (spec.solver != SolverKind::direct) {
-      const SceneSimulation<Law, ConjugateGradientSolver> scene(spec, 0, 1);
-      detail::checked_contact_step(spec, scene);
-    } else {
-      const SceneSimulation<Law, DirectLdltSolver> scene(spec, 0, 1);
-      detail::checked_contact_step(spec, scene);
-    }
-  };
-  if (!visit_scene_law(spec.contact.law, build)) throw InputError(spec.source, 0, "contact.law", "unknown contact law");
+  if (spec.solver != SolverKind::direct) {
+    const SceneSimulation<ConjugateGradientSolver> scene(spec, 0, 1);
+    detail::checked_contact_step(spec, scene);
+  } else {
+    const SceneSimulation<DirectLdltSolver> scene(spec, 0, 1);
+    detail::checked_contact_step(spec, scene);
+  }
 }
 
 // Runs a scene with the standard observers (its outputs, as RunOptions asks) and then `extra`, in
@@ -682,11 +675,7 @@ FFEM_SCENE_ENTRY_INLINE RunSummary run_scene(const SceneSpec& spec, const RunOpt
     if (opt.resume) check_resumable_folder(out);
     else check_results_folder(out, opt.overwrite);
   }
-  // The law's record picks the ContactLaw (detail::run_law: the solver).
-  RunSummary sum;
-  const auto run = [&]<class R>() { sum = detail::run_law<law_kind<R>.index>(spec, opt, extra, t_start); };
-  if (visit_scene_law(spec.contact.law, run)) return sum;
-  throw InputError(spec.source, 0, "contact.law", "unknown contact law");
+  return detail::run_checked_scene(spec, opt, extra, t_start);
 }
 #endif
 

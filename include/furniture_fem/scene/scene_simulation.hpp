@@ -1,12 +1,12 @@
 #pragma once
 // furniture_fem/scene/scene_simulation.hpp: a scene turned into a composed simulation.
 //
-//   SceneSimulation<Law, Solver>    the model, items, table motion and Simulation of a scene
+//   SceneSimulation<Solver>         the model, items, table motion and Simulation of a scene
 //   scene_body_contacts, scene_planes: the parts it is made of (the table motion: scene_motion.hpp)
 //   contact_step_estimate, energy_creation_diagnosis, energy_loss_warning: when a run cannot be trusted
 //
-// The contact law and the linear solver are compile-time policies; the runner (runner.hpp) picks
-// them from the scene's runtime choice.
+// The contact law is the registered law's kernel (scene/laws/law_list.hpp), chosen at run time; the
+// linear solver is a compile-time policy, which the runner (runner.hpp) picks from the scene's choice.
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
@@ -41,6 +41,9 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
   const auto apply = [&](ContactParams& p, const ContactOverrides& o) {
     for (const auto& key : contact_parameters)
       if (o.*(key.field)) key.apply(p, *(o.*(key.field)));
+    for (std::size_t i = 0; i < law.own_parameters.size(); ++i)
+      if (const auto given = o.own.find(std::string(law.own_parameters[i].key)); given != o.own.end())
+        p.law_params[i] = given->second;
   };
   // Floor and wall contact inside the implicit step where the scene asks for it; friction sticks only
   // there (a stick spring applied explicitly would be unstable). Two rigid implicit items also have
@@ -67,6 +70,10 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
     base.k_hc = base.k_lin / std::sqrt(0.025);
     base.hc_damping = 0.5;
     base.k_t = base.k_lin;
+    for (std::size_t i = 0; i < law.own_parameters.size(); ++i) {
+      base.law_params[i] = law.own_parameters[i].default_value;
+      if (law.own_parameters[i].per_node) base.law_params_per_node |= 1u << i;
+    }
     law.item_base(base, setup, it);
     bc.floor = base;
     bc.floor.mu = c.mu_floor_long;
@@ -112,9 +119,7 @@ inline std::vector<RigidPlane> scene_planes(const SceneSpec& s) {
 // The slope of the law's normal force at a node resting under `weight` (N) on a contact of half-width L:
 // the overlap where the law at rest pushes with `weight` (by bisection, at most L), and the law's own
 // stiffness there (its normal part's, plus its damping part's at rest). 0 if the law gives none.
-template <class Law>
-double resting_normal_stiffness(const ContactParams& p, double L, double weight) {
-  const Law law{};
+inline double resting_normal_stiffness(const ContactLawKernel& law, const ContactParams& p, double L, double weight) {
   const auto at = [&](double overlap) {
     ContactKinematics k;
     k.L = L;
@@ -156,20 +161,18 @@ ContactStepEstimate contact_step_estimate(const Sim& sim, const Model& model, co
   est.stiffness_key = info.reads("alpha_kgf")   ? "the penalty alpha_kgf"
                       : info.reads("stiffness") ? "contact.floor.stiffness"
                                                 : "";
-  visit_scene_law(law, [&]<class R>() {
-    for (const auto& it : items) {
-      if (it.bottom_nodes.empty() || contacts.at(it.body).implicit) continue;  // inside the step: no limit
-      const ContactParams& p = contacts.at(it.body).floor;
-      const double weight = model.body_mass(it.body) * ContactParams::newtons_per_kgf / double(it.bottom_nodes.size());
-      for (int n : it.bottom_nodes) {
-        if (!std::isfinite(half[n])) continue;
-        const double k = resting_normal_stiffness<typename R::law>(p, half[n], weight);
-        if (!(k > 0)) continue;
-        const double d = 2.0 * std::sqrt(sim.nodal_mass(n) / k);
-        if (d < est.dt) est.dt = d, est.item = it.name;
-      }
+  for (const auto& it : items) {
+    if (it.bottom_nodes.empty() || contacts.at(it.body).implicit) continue;  // inside the step: no limit
+    const ContactParams& p = contacts.at(it.body).floor;
+    const double weight = model.body_mass(it.body) * ContactParams::newtons_per_kgf / double(it.bottom_nodes.size());
+    for (int n : it.bottom_nodes) {
+      if (!std::isfinite(half[n])) continue;
+      const double k = resting_normal_stiffness(*info.kernel, p, half[n], weight);
+      if (!(k > 0)) continue;
+      const double d = 2.0 * std::sqrt(sim.nodal_mass(n) / k);
+      if (d < est.dt) est.dt = d, est.item = it.name;
     }
-  });
+  }
   return est;
 }
 
@@ -344,9 +347,10 @@ inline void check_obstacles_clear(const SceneSpec& spec, const Model& model, con
 // A scene turned into a composed solver: the model, its items, the table motion and the simulation
 // (owned here so the model outlives the simulation that refers to it). Fidelity per item: "rigid"
 // items are solved as rigid bodies; "auto" items are rigid unless the scene asks for their sectional
-// forces (model only what the scene needs); "full" and "coarse" are finite-element bodies. The element
-// policy is a compile-time choice (the scene file always means ASI-Gauss; studies swap it here).
-template <class Law, class Solver, class Element = AsiGaussTimoshenko>
+// forces (model only what the scene needs); "full" and "coarse" are finite-element bodies. The contact
+// law is the scene's registered law (its kernel), so one SceneSimulation<Solver> serves every law. The
+// element policy is a compile-time choice (the scene file always means ASI-Gauss; studies swap it here).
+template <class Solver, class Element = AsiGaussTimoshenko>
 struct SceneSimulation {
   using Sim = Simulation<Element, RuntimeIntegrator, Solver, RoomContact>;
   std::unique_ptr<Model> model = std::make_unique<Model>();
@@ -362,7 +366,8 @@ struct SceneSimulation {
   explicit SceneSimulation(const SceneSpec& spec, int refresh_interval_steps = 0, int threads = 0) {
     items = build_scene(spec, *model);
     motion = scene_table_motion(spec, &motion_scale);
-    RoomContact contact(*model, scene_body_contacts(spec, *model, items), scene_planes(spec), Law{});
+    RoomContact contact(*model, scene_body_contacts(spec, *model, items), scene_planes(spec),
+                        scene_law(spec.contact.law).kernel);
     contact.set_surface(*model, spec.contact.plane_contact_at == PlaneContactAt::surfaces);
     contact.set_rigid_pair_hulls(*model, spec.contact.rigid_pairs == RigidPairContact::hulls);
     contact.flexible_pairs_implicit = spec.contact.flexible_pairs == FlexiblePairContact::implicit_step;

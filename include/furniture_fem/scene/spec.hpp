@@ -149,8 +149,9 @@ struct GroundMotionSpec {
   std::optional<BuildingSpec> building;
 };
 
-// A scene contact law: its place in scene_contact_laws (scene/laws/law_list.hpp), written
-// law_kind<StiffSceneLaw>; the list's first law ("paper") is the default.
+// A scene contact law: its place in the contact law registry (scene/laws/law_list.hpp), written
+// law_kind<StiffSceneLaw> for a built-in law, or as register_contact_law<R>() returned it; the first
+// built-in law ("paper") is the default.
 struct ContactLawKind {
   std::size_t index = 0;
   friend constexpr bool operator==(ContactLawKind, ContactLawKind) = default;
@@ -161,6 +162,8 @@ struct ContactLawKind {
 struct ContactOverrides {
   std::optional<double> alpha_kgf, dc_kgf, q, mu, mu_long, mu_short;  // paper laws
   std::optional<double> stiffness, damping;                          // N/m, N s/m
+  // The law's own parameters given (LawParameter, scene/laws/law_record.hpp), by key.
+  std::map<std::string, double> own;
 };
 
 // Which items have their floor and wall contact inside the implicit step (docs/contact/implicit_contact.md):

@@ -140,9 +140,21 @@ inline void validate(const SceneSpec& s) {
     fail("dt", "must not exceed duration (dt = " + detail::fmt(s.dt) + " s, duration = " + detail::fmt(s.duration) + " s)");
   if (s.ground_motion.level < 0) fail("ground_motion.level", "must not be negative (got " + detail::fmt(s.ground_motion.level) + ")");
   if (s.items.empty()) fail("items", "a scene needs at least one item");
-  if (s.contact.law.index >= scene_law_infos.size())
-    fail("contact.law", "unknown contact law; expected one of: " + json_io::enum_choices(detail::law_names));
+  if (s.contact.law.index >= contact_law_registry().size())
+    fail("contact.law", "unknown contact law; expected one of: " + contact_law_registry().names());
   const SceneLawInfo& law = scene_law(s.contact.law);
+  // The law's own parameters given in code: declared by it, where they may stand, in range.
+  for (auto [where, o] : {std::pair{"floor", &s.contact.floor}, std::pair{"wall", &s.contact.wall},
+                          std::pair{"item", &s.contact.item}})
+    for (const auto& [key, value] : o->own) {
+      const std::string path = std::string("contact.") + where + "." + key;
+      const LawParameter* p = law.own_parameter(key);
+      if (!p) fail(path, "not used by the contact law \"" + std::string(law.name) + "\"");
+      if (p->floor_only && std::string_view(where) != "floor") fail(path, "only contact.floor takes it");
+      if (!p->accepts(value))
+        fail(path, "must lie in " + p->range_text() + " (got " + detail::fmt(value) + ", contact law \"" +
+                       std::string(law.name) + "\")");
+    }
 
   std::set<std::string> names;
   std::vector<detail::Footprint> footprints;

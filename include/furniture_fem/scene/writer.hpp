@@ -99,7 +99,7 @@ inline nlohmann::json to_json(const SceneSpec& s) {
     j["items"].push_back(item);
   }
   j["ground_motion"] = detail::ground_motion_json(s.ground_motion);
-  json contact = {{"law", enum_name(detail::law_names, s.contact.law)},
+  json contact = {{"law", std::string(scene_law(s.contact.law).name)},
                   {"implicit", enum_name(detail::implicit_contact_names, implicit_contact(s.contact))},
                   {"velocity_regularisation", s.contact.velocity_regularisation},
                   {"plane_contact_at", enum_name(detail::plane_contact_at_names, s.contact.plane_contact_at)},

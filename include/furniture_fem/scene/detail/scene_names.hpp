@@ -1,5 +1,6 @@
 #pragma once
-// Internal: the names scene files use for enumerations (the contact laws' from scene/laws/law_list.hpp); shared
+// Internal: the names scene files use for enumerations (the contact laws' are in their registry,
+// scene/laws/law_list.hpp); shared
 // by the reader and the writer. Users include furniture_fem/scene/scene.hpp, not this file.
 #ifndef FURNITURE_FEM_SCENE_INTERNAL
 #error "furniture_fem/scene/detail/scene_names.hpp is internal: include <furniture_fem/scene/scene.hpp>"
@@ -30,11 +31,6 @@ inline constexpr EnumNames<MotionDimensions, 2> dimension_names{
     {{MotionDimensions::one_d, "1d"}, {MotionDimensions::three_d, "3d"}}};
 inline constexpr EnumNames<AccelerationUnits, 3> unit_names{
     {{AccelerationUnits::g, "g"}, {AccelerationUnits::gal, "gal"}, {AccelerationUnits::m_per_s2, "m/s2"}}};
-template <class... R>
-constexpr EnumNames<ContactLawKind, sizeof...(R)> names_of(LawList<R...>) {
-  return {{{law_kind<R>, R::name}...}};
-}
-inline constexpr auto law_names = names_of(scene_contact_laws{});
 inline constexpr EnumNames<ImplicitContact, 3> implicit_contact_names{
     {{ImplicitContact::none, "none"}, {ImplicitContact::rigid, "rigid"}, {ImplicitContact::all, "all"}}};
 inline constexpr EnumNames<FlexiblePairContact, 2> flexible_pair_contact_names{
@@ -89,6 +85,7 @@ inline json overrides_to_json(const ContactOverrides& o) {
   json j = json::object();
   for (const auto& p : contact_parameters)
     if (o.*(p.field)) j[std::string(p.key)] = *(o.*(p.field));
+  for (const auto& [key, value] : o.own) j[key] = value;
   return j;
 }
 

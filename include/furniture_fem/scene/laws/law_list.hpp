@@ -1,15 +1,20 @@
 #pragma once
-// furniture_fem/scene/laws/law_list.hpp: the scene contact laws, one line each, and what is generated from
-// the list. Adding a law: its record (scene/laws/<law>.hpp; law_record.hpp says what it states), its
-// include and its line below (docs/contact/contact.md, "Adding a contact law").
+// furniture_fem/scene/laws/law_list.hpp: the scene contact laws. The built-in laws are one list, one line
+// each; they and any law a program adds at run time (register_contact_law<R>()) are held in one registry,
+// which the reader, the writer, validation, the per-item set-up and the run read (docs/contact/contact.md,
+// "Adding a contact law").
 //
-//   scene_contact_laws                the list; its first law is a scene's default
-//   law_kind<R>                       the ContactLawKind of record R (s.contact.law = law_kind<StiffSceneLaw>)
+//   builtin_contact_laws              the built-in records; the first is a scene's default
+//   law_kind<R>                       the ContactLawKind of built-in record R (s.contact.law = law_kind<StiffSceneLaw>)
+//   ContactLawRegistry                laws by name: what a record states, as values, and its law's kernel
+//   contact_law_registry()            the registry scenes are read and run against
+//   register_contact_law<R>()         makes a program's own record nameable in scene files and studies
 //   scene_law(kind)                   what the reader, writer, validation and set-up need of a law
-//   visit_scene_law(kind, f)          f.template operator()<R>() for the law's record (the run dispatch)
 //   contact_law_table()               the override keys by law, as the table of docs/scene/scene_file.md
 #include <array>
 #include <cstddef>
+#include <deque>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -17,6 +22,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "../../contact/contact_law_kernel.hpp"
 #include "../../core/errors.hpp"
 #include "hunt_crossley.hpp"
 #include "law_record.hpp"
@@ -28,11 +34,8 @@
 
 namespace furniture_fem {
 
-using scene_contact_laws = LawList<PaperSceneLaw, PaperAnisotropicSceneLaw, SpringDashpotSceneLaw,
-                                   HuntCrossleySceneLaw, StickSlipSceneLaw, StiffSceneLaw>;
-
-// ---------------------------------------------------------------------------------------------
-// Generated from the list.
+using builtin_contact_laws = LawList<PaperSceneLaw, PaperAnisotropicSceneLaw, SpringDashpotSceneLaw,
+                                     HuntCrossleySceneLaw, StickSlipSceneLaw, StiffSceneLaw>;
 
 namespace detail {
 template <class R, class... Rs>
@@ -43,49 +46,113 @@ consteval std::size_t index_in(LawList<Rs...>) {
 }
 }  // namespace detail
 
+// A built-in law's kind: its place in the list, which is its place in every registry (they come first).
 template <SceneContactLaw R>
-  requires(detail::index_in<R>(scene_contact_laws{}) < scene_contact_laws::size)
-inline constexpr ContactLawKind law_kind{detail::index_in<R>(scene_contact_laws{})};
+  requires(detail::index_in<R>(builtin_contact_laws{}) < builtin_contact_laws::size)
+inline constexpr ContactLawKind law_kind{detail::index_in<R>(builtin_contact_laws{})};
 
-// A record's statements as values, for the code that reads a law at run time.
+// A record's statements as values, and its law's kernel: what the code that reads a law at run time needs.
 struct SceneLawInfo {
   std::string_view name;
-  std::span<const std::string_view> parameters;
+  std::span<const std::string_view> parameters;  // the shared keys it reads (contact_parameters)
+  std::span<const LawParameter> own_parameters;  // its own, in ContactParams::law_params
   std::string_view own_stick_spring;
   std::optional<ImplicitContact> default_implicit;
   std::span<const std::string_view> unused_item_parameters;
   std::string_view unused_item_parameters_why;
   void (*item_base)(ContactParams&, const LawSetup&, const ItemInfo&);
   void (*item_pair)(ContactParams&, const LawSetup&);
+  std::shared_ptr<const ContactLawKernel> kernel;  // the law's force, one object shared by every run
 
+  template <SceneContactLaw R>
+  static SceneLawInfo of() {
+    return {R::name,           R::parameters,       R::own_parameters,           R::own_stick_spring,
+            R::default_implicit, R::unused_item_parameters, R::unused_item_parameters_why,
+            &R::item_base,     &R::item_pair,       make_contact_law_kernel<typename R::law>()};
+  }
+  // The law's own parameter `key`, or null.
+  const LawParameter* own_parameter(std::string_view key) const {
+    for (const auto& p : own_parameters)
+      if (p.key == key) return &p;
+    return nullptr;
+  }
+  // Whether the law reads override key `key` (shared or its own).
   bool reads(std::string_view key) const {
     for (auto k : parameters)
       if (k == key) return true;
-    return false;
+    return own_parameter(key) != nullptr;
   }
 };
 
-namespace detail {
+// Laws by name, in the order they were added (a ContactLawKind is that place). Entries never move once added.
+class ContactLawRegistry {
+ public:
+  template <SceneContactLaw R>
+  ContactLawKind add() { return add(SceneLawInfo::of<R>()); }
+  ContactLawKind add(SceneLawInfo law) {
+    if (law.name.empty()) throw ModelError("a contact law needs a name");
+    if (find(law.name)) throw ModelError("contact law \"" + std::string(law.name) + "\" is already registered");
+    laws_.push_back(std::move(law));
+    return ContactLawKind{laws_.size() - 1};
+  }
+  const SceneLawInfo* find(std::string_view name) const {
+    for (const auto& law : laws_)
+      if (law.name == name) return &law;
+    return nullptr;
+  }
+  std::optional<ContactLawKind> kind(std::string_view name) const {
+    for (std::size_t i = 0; i < laws_.size(); ++i)
+      if (laws_[i].name == name) return ContactLawKind{i};
+    return std::nullopt;
+  }
+  const SceneLawInfo& at(ContactLawKind kind) const {
+    if (kind.index >= laws_.size())
+      throw ModelError("unknown contact law (index " + std::to_string(kind.index) + " of " +
+                       std::to_string(laws_.size()) + "); registered laws: " + names());
+    return laws_[kind.index];
+  }
+  const std::deque<SceneLawInfo>& laws() const { return laws_; }
+  std::size_t size() const { return laws_.size(); }
+  // The names, as "paper, paper_anisotropic, ..." (the reader's list of choices).
+  std::string names() const {
+    std::string list;
+    for (const auto& law : laws_) list.append(list.empty() ? "" : ", ").append(law.name);
+    return list;
+  }
+
+ private:
+  std::deque<SceneLawInfo> laws_;
+};
+
+// A registry holding the built-in laws only (the docs table is made from it).
+inline ContactLawRegistry builtin_contact_law_registry() {
+  ContactLawRegistry registry;
+  [&]<class... R>(LawList<R...>) { (registry.add<R>(), ...); }(builtin_contact_laws{});
+  return registry;
+}
+
+// The registry scene files are read, checked and run against: the built-in laws and those registered
+// since. Register laws before reading or running scenes on other threads: it is not locked.
+inline ContactLawRegistry& contact_law_registry() {
+  static ContactLawRegistry registry = builtin_contact_law_registry();
+  return registry;
+}
+
+// Makes record R (law_record.hpp says what it states) nameable in scene files and study variants, under
+// R::name; returns its kind (SceneSpec::contact.law). A name already registered, a built-in's included, is
+// a ModelError naming the law.
 template <SceneContactLaw R>
-constexpr SceneLawInfo info_of() {
-  return {R::name,           R::parameters,
-          R::own_stick_spring, R::default_implicit,   R::unused_item_parameters,
-          R::unused_item_parameters_why, &R::item_base, &R::item_pair};
+ContactLawKind register_contact_law() {
+  if (builtin_contact_law_registry().find(R::name))
+    throw ModelError("contact law \"" + std::string(R::name) +
+                     "\" is a built-in law: register your law under a name of its own");
+  return contact_law_registry().add<R>();
 }
-template <class... R>
-constexpr std::array<SceneLawInfo, sizeof...(R)> infos_of(LawList<R...>) {
-  return {info_of<R>()...};
-}
-}  // namespace detail
 
-inline constexpr auto scene_law_infos = detail::infos_of(scene_contact_laws{});
+// The registered law of that name, if any.
+inline std::optional<ContactLawKind> contact_law_kind(std::string_view name) { return contact_law_registry().kind(name); }
 
-inline const SceneLawInfo& scene_law(ContactLawKind kind) {
-  if (kind.index >= scene_law_infos.size())
-    throw ModelError("unknown contact law (index " + std::to_string(kind.index) + " of " +
-                     std::to_string(scene_law_infos.size()) + ")");
-  return scene_law_infos[kind.index];
-}
+inline const SceneLawInfo& scene_law(ContactLawKind kind) { return contact_law_registry().at(kind); }
 
 // Which items' floor and wall contact is inside the implicit step: the spec's choice, else its law's
 // default, else every item's (issue 52: explicit, a flexible item's contact creeps at rest; the paper's
@@ -95,19 +162,11 @@ inline ImplicitContact implicit_contact(const ContactSpec& c) {
   return scene_law(c.law).default_implicit.value_or(ImplicitContact::all);
 }
 
-// Calls f.template operator()<R>() with the record of `kind`; false when the list has no such law.
-template <class F>
-bool visit_scene_law(ContactLawKind kind, F&& f) {
-  return [&]<class... R>(LawList<R...>) {
-    return ((kind == law_kind<R> && (f.template operator()<R>(), true)) || ...);
-  }(scene_contact_laws{});
-}
-
-// The names joined as `"a", "b" and "c"`, of the laws that pass `keep`.
+// The names joined as `"a", "b" and "c"`, of the registered laws that pass `keep`.
 template <class Keep>
 std::string law_name_list(Keep&& keep) {
   std::vector<std::string_view> names;
-  for (const auto& law : scene_law_infos)
+  for (const auto& law : contact_law_registry().laws())
     if (keep(law)) names.push_back(law.name);
   std::string out;
   for (size_t i = 0; i < names.size(); ++i) {
@@ -117,21 +176,26 @@ std::string law_name_list(Keep&& keep) {
   return out;
 }
 
-// The override keys and the laws that read them, as markdown (docs/scene/scene_file.md; tests/scene
-// checks that the page holds this table).
-inline std::string contact_law_table() {
+// The override keys and the laws that read them, as markdown: the shared keys, then each law's own
+// (docs/scene/scene_file.md holds the built-in laws' table; tests/scene checks that the page holds it).
+inline std::string contact_law_table(const ContactLawRegistry& registry = builtin_contact_law_registry()) {
+  // Appended piece by piece: GCC 12 warns on + chains of strings here (-Wrestrict, a false alarm).
   std::string head = "| key | unit | range |", rule = "|---|---|---|";
-  for (const auto& law : scene_law_infos) {
-    head += " " + std::string(law.name) + " |";
-    rule += "---|";
+  for (const auto& law : registry.laws()) {
+    head.append(" ").append(law.name).append(" |");
+    rule.append("---|");
   }
-  std::string md = head + " meaning |\n" + rule + "---|\n";
-  for (const auto& p : contact_parameters) {
-    md += "| `" + std::string(p.key) + "` | " + std::string(p.unit) + " | " + (p.lo_exclusive ? "(" : "[") +
-          detail::fmt(p.lo) + ", " + detail::fmt(p.hi) + "] |";
-    for (const auto& law : scene_law_infos) md += law.reads(p.key) ? " yes |" : " |";
-    md += " " + std::string(p.meaning) + " |\n";
-  }
+  std::string md = head;
+  md.append(" meaning |\n").append(rule).append("---|\n");
+  const auto row = [&](std::string_view key, std::string_view unit, const std::string& range, std::string_view meaning) {
+    md.append("| `").append(key).append("` | ").append(unit).append(" | ").append(range).append(" |");
+    for (const auto& law : registry.laws()) md.append(law.reads(key) ? " yes |" : " |");
+    md.append(" ").append(meaning).append(" |\n");
+  };
+  for (const auto& p : contact_parameters)
+    row(p.key, p.unit, detail::range_text(p.lo, p.hi, p.lo_exclusive), p.meaning);
+  for (const auto& law : registry.laws())
+    for (const auto& p : law.own_parameters) row(p.key, p.unit, p.range_text(), p.meaning);
   return md;
 }
 

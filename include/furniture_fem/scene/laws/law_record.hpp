@@ -4,7 +4,8 @@
 // validation, the per-item set-up and the run dispatch are generated from that list
 // (docs/contact/contact.md, "Adding a contact law").
 //
-//   ContactParameter, contact_parameters   the override keys of contact.floor / wall / item
+//   ContactParameter, contact_parameters   the override keys the built-in laws share
+//   LawParameter                            a parameter a law declares of its own (ContactParams::law_params)
 //   SceneLawDefaults                        what a record inherits unless it says otherwise
 //   LawList<R...>                           a list of records
 #include <array>
@@ -12,6 +13,7 @@
 #include <concepts>
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <tuple>
 #include <vector>
@@ -66,6 +68,33 @@ inline const ContactParameter* find_contact_parameter(std::string_view key) {
   return nullptr;
 }
 
+namespace detail {
+// "(lo, hi]" or "[lo, hi]", appended piece by piece: GCC 12 warns on a + chain of strings here
+// (-Wrestrict, a false alarm).
+inline std::string range_text(double lo, double hi, bool lo_exclusive) {
+  std::string text(lo_exclusive ? "(" : "[");
+  return text.append(fmt(lo)).append(", ").append(fmt(hi)).append("]");
+}
+}  // namespace detail
+
+// A parameter a law declares of its own, beyond the shared keys above: a key of contact.floor / wall /
+// item, read by the law's force from ContactParams::law_params[slot], slot its place in the record's
+// own_parameters. Every item starts from default_value (the record's item_base may set it from the item);
+// two items in contact take the mean of their values (ContactParams::pair); a per_node value is scaled
+// with a contact's share of nodes (a rigid item's support point standing for n nodes takes n times it).
+struct LawParameter {
+  std::string_view key, unit;
+  double lo = 0, hi = 0;  // accepted range, both ends included unless lo_exclusive
+  bool lo_exclusive = false;
+  double default_value = 0;
+  std::string_view meaning;  // one line, for the docs table
+  bool per_node = false;     // a force coefficient (N, N/m^k, N s/m ...): scaled with the node share
+  bool floor_only = false;   // only contact.floor takes it
+
+  std::string range_text() const { return detail::range_text(lo, hi, lo_exclusive); }
+  bool accepts(double v) const { return (lo_exclusive ? v > lo : v >= lo) && v <= hi; }
+};
+
 // What the per-item set-up of a law may read (scene_body_contacts).
 struct LawSetup {
   const SceneSpec& spec;
@@ -83,6 +112,8 @@ struct SceneLawDefaults {
   // Item parameters (items[i].params) the law sets itself, and why: given, they are an error.
   static constexpr std::array<std::string_view, 0> unused_item_parameters{};
   static constexpr std::string_view unused_item_parameters_why{};
+  // The law's own parameters (LawParameter), at most ContactParams::max_law_params.
+  static constexpr std::array<LawParameter, 0> own_parameters{};
   // An item's parameters before the pair kinds get their friction, and its item-item parameters.
   static void item_base(ContactParams&, const LawSetup&, const ItemInfo&) {}
   static void item_pair(ContactParams&, const LawSetup&) {}
@@ -106,13 +137,25 @@ consteval bool declares_known_keys() {
   }
   return true;
 }
+// Whether a record's own keys fit ContactParams::law_params and are neither shared keys nor repeated.
+template <class R>
+consteval bool declares_distinct_own_keys() {
+  if (R::own_parameters.size() > ContactParams::max_law_params) return false;
+  for (std::size_t i = 0; i < R::own_parameters.size(); ++i) {
+    for (const auto& p : contact_parameters)
+      if (p.key == R::own_parameters[i].key) return false;
+    for (std::size_t j = 0; j < i; ++j)
+      if (R::own_parameters[j].key == R::own_parameters[i].key) return false;
+  }
+  return true;
+}
 }  // namespace detail
 
-// A scene contact law: a name, a ContactLaw, whether the CG solver is built for it, and its keys.
+// A scene contact law: a name, a ContactLaw, the shared keys it reads and its own parameters.
 template <class R>
 concept SceneContactLaw = std::derived_from<R, SceneLawDefaults> && ContactLawPolicy<typename R::law> && requires {
   { R::name } -> std::convertible_to<std::string_view>;
   { R::parameters.size() } -> std::convertible_to<std::size_t>;
-} && detail::declares_known_keys<R>();
+} && detail::declares_known_keys<R>() && detail::declares_distinct_own_keys<R>();
 
 }  // namespace furniture_fem
