@@ -55,6 +55,9 @@ def default_quake():
 def stiff_contact(contact):
     out = {k: v for k, v in contact.items() if k in STIFF_TOP_KEYS}
     out["law"] = "stiff"
+    # Two full items' pairs as the committed columns ran them: explicit (the default until 2026-12-06;
+    # solved together, docs/contact/implicit_contact.md "Flexible groups", the full columns cost 2.5 times).
+    out["flexible_pairs"] = "explicit"
     for pair in ("floor", "wall", "item"):
         if pair in contact:
             kept = {k: v for k, v in contact[pair].items() if k in STIFF_OVERRIDE_KEYS}

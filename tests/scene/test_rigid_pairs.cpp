@@ -168,9 +168,18 @@ TEST_CASE("contact.rigid_pairs: read, written back, changes the result, named er
 TEST_CASE("contact.flexible_pairs: read, written back, the full cabinets rest on each other, named errors",
           "[scene][flexible_groups][errors]") {
   json j = stacked_scene({{0.0, 0.0}, {3.0, 0.0}}, 0.3, "stiff", "surfaces", "hulls", "full");
-  const SceneSpec unset = parse_scene_json(j, "explicit.json");
-  CHECK(unset.contact.flexible_pairs == FlexiblePairContact::explicit_load);
+  // Unset: inside the step under `implicit` `all` (the default), the predictor's load under `rigid`.
+  const SceneSpec unset = parse_scene_json(j, "default.json");
+  CHECK_FALSE(unset.contact.flexible_pairs.has_value());
+  CHECK(flexible_pair_contact(unset.contact) == FlexiblePairContact::implicit_step);
   CHECK_FALSE(to_json(unset)["contact"].contains("flexible_pairs"));  // written when set: older scene.json unchanged
+  json paper_treatment = j;
+  paper_treatment["contact"]["implicit"] = "rigid";
+  CHECK(flexible_pair_contact(parse_scene_json(paper_treatment, "rigid.json").contact) == FlexiblePairContact::explicit_load);
+  json apart_json = j;
+  apart_json["contact"]["flexible_pairs"] = "explicit";
+  const SceneSpec apart_spec = parse_scene_json(apart_json, "explicit.json");
+  CHECK(parse_scene_json(to_json(apart_spec), "again.json").contact.flexible_pairs == FlexiblePairContact::explicit_load);
   j["contact"]["flexible_pairs"] = "implicit";
   const SceneSpec joint = parse_scene_json(j, "joint.json");
   CHECK(joint.contact.flexible_pairs == FlexiblePairContact::implicit_step);
@@ -179,10 +188,10 @@ TEST_CASE("contact.flexible_pairs: read, written back, the full cabinets rest on
   // frames, applied at the predictor, walks the upper cabinet (measured: 4.8 mm); solved together it
   // holds but for the panels' elastic settling (0.73 um; from 0.1 to 0.3 s, 9.7 um and 1.8 mm; the
   // frames of tests/contact_dynamics/stacked.cpp: 1e-17 m). Bounds: 10 um and 1 mm.
-  Stack<SpringDashpotLaw> apart(stacked_scene({{0.0, 0.0}, {3.0, 0.0}}, 0.3, "stiff", "surfaces", "hulls", "full")),
-      together(j);
+  Stack<SpringDashpotLaw> apart(apart_json), together(j), by_default(stacked_scene({{0.0, 0.0}, {3.0, 0.0}}, 0.3, "stiff", "surfaces", "hulls", "full"));
   CHECK_FALSE(apart.scene.sim->contact_model().flexible_pairs_implicit);
   CHECK(together.scene.sim->contact_model().flexible_pairs_implicit);
+  CHECK(by_default.scene.sim->contact_model().flexible_pairs_implicit);
   const auto drift = [](Stack<SpringDashpotLaw>& s) {
     s.scene.sim->run_until(0.2);
     const Vec3 settled = s.slide();

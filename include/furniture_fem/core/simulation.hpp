@@ -681,16 +681,16 @@ class Simulation {
   // A flexible group's solve: each member by its own system S, then the pairs' terms D on the pair
   // nodes' translations U by the Woodbury identity: x = x0 - S^-1 U y, (I + D G) y = D U^T x0,
   // G = U^T S^-1 U (FlexibleBody::pair_flexibility), by GMRES near the last factorised (I + D G)
-  // (docs/contact/implicit_contact.md). False when a solve failed.
+  // (detail/group_layout.hpp; docs/contact/implicit_contact.md). False when a solve failed.
   bool solve_flexible_group(std::span<const int> members, bool first_solve);
   // A flexible group's pair nodes (member i's from first[i], as its locals) and its terms D by 3 x 3 block.
-  struct GroupPairNodes {
-    std::vector<int> nodes, first;
-    std::vector<std::vector<int>> locals;
+  struct GroupPairNodes : detail::GroupLayout {
     struct Block { int row, col; Mat3 k; };
     std::vector<Block> terms;
   };
   GroupPairNodes group_pair_nodes(std::span<const int> members, const std::vector<int>& pairs) const;
+  // G of each member at layout's nodes; false when a solve failed.
+  bool group_flexibility(const detail::GroupLayout& layout, std::vector<Eigen::MatrixXd>& G);
   static Eigen::MatrixXd group_matrix(const GroupPairNodes& g, const std::vector<Eigen::MatrixXd>& G);  // I + D G
   const std::vector<PairContactTangent>& pair_tangents() const;  // the contact's (none without them)
   // f(node, w) for a pair's four nodes, w the node's share of the relative displacement (a's positive).

@@ -365,8 +365,9 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
                                                s.contact.plane_contact_at, "plane contact place");
     s.contact.rigid_pairs = c.enumeration("rigid_pairs", detail::rigid_pair_contact_names, s.contact.rigid_pairs,
                                           "rigid pair contact");
-    s.contact.flexible_pairs = c.enumeration("flexible_pairs", detail::flexible_pair_contact_names,
-                                             s.contact.flexible_pairs, "flexible pair contact");
+    if (c.has("flexible_pairs"))
+      s.contact.flexible_pairs = c.enumeration("flexible_pairs", detail::flexible_pair_contact_names,
+                                               FlexiblePairContact::explicit_load, "flexible pair contact");
     if (s.contact.flexible_pairs == FlexiblePairContact::implicit_step && implicit_contact(s.contact) != ImplicitContact::all)
       c.fail(c.path("flexible_pairs"), "\"implicit\" needs \"implicit\": \"all\" (a flexible item's contact inside the step)");
     s.contact.start = c.enumeration("start", detail::contact_start_names, s.contact.start, "start");

@@ -36,7 +36,8 @@ inline constexpr const char* checkpoint_file = "checkpoint.bin";
 // 2: the Figures observer keeps the energy series; 3: a settled start's figures and each item's start;
 // 4: whether the settling finished, and its fastest item; 5: the CRC-32 at the end, and the structs that
 // have padding stored member by member (no padding byte is written); 6: the table's motion integrated
-// once, by the runner (RunView::table), instead of in three observers.
+// once, by the runner (RunView::table), instead of in three observers, and each flexible group's kept
+// factorisation (its nodes and matrix).
 inline constexpr std::string_view checkpoint_magic = "furniture_fem checkpoint 6";
 inline constexpr std::size_t checkpoint_checksum_bytes = 4;  // the CRC-32 after the state
 

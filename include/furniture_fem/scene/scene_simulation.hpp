@@ -96,6 +96,14 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
   return out;
 }
 
+// Two finite-element items' pairs: as the scene says, else inside the step when every item's floor and
+// wall contact is (`implicit` `all`), else the predictor's load (docs/scene/scene_file.md).
+inline FlexiblePairContact flexible_pair_contact(const ContactSpec& c) {
+  if (c.flexible_pairs) return *c.flexible_pairs;
+  return implicit_contact(c) == ImplicitContact::all ? FlexiblePairContact::implicit_step
+                                                     : FlexiblePairContact::explicit_load;
+}
+
 inline std::vector<RigidPlane> scene_planes(const SceneSpec& s) {
   std::vector<RigidPlane> planes;
   RigidPlane floor;
@@ -370,7 +378,7 @@ struct SceneSimulation {
                         scene_law(spec.contact.law).kernel);
     contact.set_surface(*model, spec.contact.plane_contact_at == PlaneContactAt::surfaces);
     contact.set_rigid_pair_hulls(*model, spec.contact.rigid_pairs == RigidPairContact::hulls);
-    contact.flexible_pairs_implicit = spec.contact.flexible_pairs == FlexiblePairContact::implicit_step;
+    contact.flexible_pairs_implicit = flexible_pair_contact(spec.contact) == FlexiblePairContact::implicit_step;
     std::vector<MeshObstacle> obstacles;
     for (std::size_t i = 0; i < spec.obstacles.size(); ++i) obstacles.push_back(detail::scene_obstacle(spec, i));
     detail::check_obstacles_clear(spec, *model, items, obstacles);

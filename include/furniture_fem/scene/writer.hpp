@@ -106,8 +106,8 @@ inline nlohmann::json to_json(const SceneSpec& s) {
                   {"rigid_pairs", enum_name(detail::rigid_pair_contact_names, s.contact.rigid_pairs)},
                   {"start", enum_name(detail::contact_start_names, s.contact.start)}};
   if (scene_law(s.contact.law).own_stick_spring.empty()) contact["stick_length"] = s.contact.stick_length;
-  if (s.contact.flexible_pairs != FlexiblePairContact::explicit_load)  // written when set: older scene.json unchanged
-    contact["flexible_pairs"] = enum_name(detail::flexible_pair_contact_names, s.contact.flexible_pairs);
+  if (s.contact.flexible_pairs)  // written when set: older scene.json unchanged
+    contact["flexible_pairs"] = enum_name(detail::flexible_pair_contact_names, *s.contact.flexible_pairs);
   for (auto [key, o] : {std::pair{"floor", &s.contact.floor}, std::pair{"wall", &s.contact.wall},
                         std::pair{"item", &s.contact.item}}) {
     const json ov = detail::overrides_to_json(*o);

@@ -11,6 +11,7 @@
 
 #include "../elements.hpp"
 #include "../model.hpp"
+#include "group_layout.hpp"
 #include "matrix_free.hpp"
 #include "rotation.hpp"
 
@@ -80,13 +81,6 @@ struct Woodbury {
   Eigen::PartialPivLU<Eigen::MatrixXd> lu;
 };
 
-// A flexible group's joint system I + D G factorised (Simulation::solve_flexible_group), kept by the
-// group's lowest member for the next steps' solves while the group's pair nodes stay the same.
-struct GroupFactor {
-  std::vector<int> nodes;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
-};
-
 // One body's sparse effective matrix with a fixed pattern and, per element, the positions of its
 // 144 entries in the value array: assembly writes straight into the matrix without searching or
 // allocating.
@@ -152,7 +146,7 @@ struct BodySystem {
   std::vector<ContactChange> solve_changes;
   Woodbury solve_woodbury;  // of solve_changes (kept for the group's products with the same operator)
   Mat3 solve_turn = Mat3::Identity();
-  GroupFactor group_factor;  // of the group this body leads (scratch, not saved)
+  GroupFactor group_factor;  // of the group this body leads (detail/group_layout.hpp)
   int ndof() const { return static_cast<int>(nodes.size()) * 6; }
 };
 

@@ -214,7 +214,7 @@ inline void Simulation<Element, Integrator, LinearSolver, Contact>::transfer_sta
     }
     ar(bs.Q_factor, bs.steps_since_refresh, bs.needs_refresh, bs.assembled, bs.rigid, bs.rigid_c0, bs.rigid_dc,
        bs.rigid_Q, bs.contact, bs.contact_factored, bs.status_factored, bs.max_reuse_error, bs.frames_factor, bs.max_frame_drift, bs.drift_refreshes, bs.factored_nodes, bs.contact_columns, bs.contact_column, bs.contact_column_dim,
-       bs.contact_columns_used, bs.r, bs.dx, bs.work);
+       bs.contact_columns_used, bs.r, bs.dx, bs.work, bs.group_factor);
   }
   long factorizations = s.factorizations();
   ar(factorizations);
