@@ -5,6 +5,9 @@
 //   GroupLayout      the group's members and its pair nodes, member by member (slots of the system)
 //   GroupFactor      the layout the group's system I + D G was last factorised on, the matrix and its LU
 //                    (kept for the next steps' GMRES while the layout is the same; in checkpoints)
+#ifndef FURNITURE_FEM_CORE_INTERNAL
+#error "furniture_fem/core/detail/group_layout.hpp is internal: include <furniture_fem/core/simulation.hpp>"
+#endif
 #include <Eigen/Dense>
 #include <algorithm>
 #include <type_traits>
