@@ -6,6 +6,9 @@
 #   rest    gravity alone, 10 s: slide of the centre of gravity and the largest nodal speed at the end;
 #   ramp    table acceleration along Y rising at 1 m/s^2 per s: the acceleration at which a base edge
 #           first lifts 1 mm (the quasi-static onset of rocking, g b/h for a rigid block);
+#   hold    a slower ramp (HOLD_RAMP_RATE) up to a level, then the level held HOLD_S: the least level that overturns, by
+#           bisection (the quasi-static threshold, g b/h for a rigid block: the ramp's onset without a lift to
+#           define it, which at `full` also counts the base's partial uplift before the body rocks);
 #   sudden  a constant acceleration along Y applied within 1 ms and held 3 s: the least that overturns
 #           (largest tilt past OVERTURN_DEG), by bisection;
 #   pulse   a rectangular pulse along Y of PULSE_S: the least amplitude that overturns (Housner's
@@ -17,7 +20,8 @@
 # along X; at mu 0.2 at most 0.2 g, far below it).
 #
 #   python3 scripts/full_vs_rigid.py build/examples/furniture_quake [--jobs 2] [--kinds locker,table]
-#       [--checks rest,ramp,sudden,pulse,slide] [--out docs/contact/full_vs_rigid.md] [--frame-drift RAD]
+#       [--checks rest,ramp,hold,sudden,pulse,slide] [--configs "rigid stiff,full stiff"]
+#       [--out docs/contact/full_vs_rigid.md] [--frame-drift RAD]
 #   python3 scripts/full_vs_rigid.py --table-from docs/contact/full_vs_rigid.csv --checks rest,ramp,slide
 #       (the table again from a run's CSV, without running)
 #
@@ -35,6 +39,14 @@ SETTLE = 0.3
 # squat kinds tilt further than that and come back (a rigid side table up to 50 deg under a 0.25 s pulse).
 OVERTURN_DEG = 60.0
 PULSE_S = 0.25
+RAMP_RATE = 1.0  # m/s^2 per s: the ramp of `ramp`
+# `hold`'s ramp is slower: near its threshold a full item's base uplifts along an equilibrium path whose
+# stiffness falls to zero, so at 1 m/s^2 per s a full locker tipped at 2.694 m/s^2 that holds at 2.705
+# when ramped at 0.25 (held 6 s). A rigid item has no such path: its threshold is the same at either rate.
+HOLD_RAMP_RATE = 0.25
+# A level 0.3 % above a rigid locker's threshold has lifted its heel 0.3 m (past tipping) 2.8 s after the
+# level is reached (measured; the tilt grows as cosh(lambda t)), so 6 s of hold resolve the bisection.
+HOLD_S = 6.0
 OUT = os.environ.get('FFEM_MATRIX_OUT', '/tmp/ffem_matrix')
 FRAME_DRIFT = None  # integrator.frame_drift_refresh of every scene (--frame-drift); None: the scene's
 # kind: (outer depth D along Y, extra params); the block is 0.4 wide, 0.2 deep, 0.8 tall, 50 kg.
@@ -129,7 +141,7 @@ def check_rest(kind, fid, law, implicit):
 
 def check_ramp(kind, fid, law, implicit):
     D, _ = KINDS[kind]
-    rate, top = 1.0, 1.2 * G
+    rate, top = RAMP_RATE, 1.2 * G
     t_end = SETTLE + top / rate
     motion = {"x": [[0, 0]], "y": [[0, 0], [SETTLE, 0], [t_end, top]]}
     markers = [{"name": "front", "item": "it", "point": [0, -D / 2, 0]}, {"name": "back", "item": "it", "point": [0, D / 2, 0]}]
@@ -141,6 +153,16 @@ def check_ramp(kind, fid, law, implicit):
         if t > SETTLE and max(float(r[f'{m}_z']) - z0[m] for m in z0) > 1e-3:
             return {'ramp_onset': rate * (t - SETTLE)}
     return {'ramp_onset': math.inf}
+
+
+def check_hold(kind, fid, law, implicit, guess):
+    def make(a):
+        t_level = SETTLE + a / HOLD_RAMP_RATE
+        return scene(kind, fid, law, implicit, 1.0, {"x": [[0, 0]], "y": [[0, 0], [SETTLE, 0], [t_level, a], [t_level + HOLD_S, a]]},
+                     t_level + HOLD_S, [])
+    lo, hi, it = (0.05 * G, 1.5 * G, 10) if guess is None else (0.9 * guess, 1.1 * guess, 6)
+    a, runs, stopped = threshold(make, lo, hi, it, f"hold_{kind}_{fid}_{law}_{implicit}")
+    return {'hold': a, 'hold_runs': runs, 'hold_stopped': stopped}
 
 
 def check_sudden(kind, fid, law, implicit, guess):
@@ -183,6 +205,7 @@ def measure(kind, fid, law, implicit, checks, guesses):
     r = {'kind': kind, 'config': config_name(fid, law, implicit)}
     if 'rest' in checks: r.update(check_rest(kind, fid, law, implicit))
     if 'ramp' in checks: r.update(check_ramp(kind, fid, law, implicit))
+    if 'hold' in checks: r.update(check_hold(kind, fid, law, implicit, guesses.get('hold')))
     if 'sudden' in checks: r.update(check_sudden(kind, fid, law, implicit, guesses.get('sudden')))
     if 'pulse' in checks: r.update(check_pulse(kind, fid, law, implicit, guesses.get('pulse')))
     if 'slide' in checks: r.update(check_slide(kind, fid, law, implicit))
@@ -202,15 +225,16 @@ def rel(x, ref):
     return f" ({100 * (x / ref - 1):+.1f} %)"
 
 
-def table(rows, checks):
+def table(rows, checks, configs=CONFIGS):
     by = {(r['kind'], r['config']): r for r in rows}
     lines = []
     for kind in dict.fromkeys(r['kind'] for r in rows):
         lines += [f"\n### {kind}\n", "| configuration | " + " | ".join(
-            {'rest': 'rest: slide mm, node mm/s', 'ramp': 'ramp onset m/s^2', 'sudden': 'sudden load m/s^2',
+            {'rest': 'rest: slide mm, node mm/s', 'ramp': 'ramp onset m/s^2',
+             'hold': f'ramp and hold {HOLD_S:g} s m/s^2', 'sudden': 'sudden load m/s^2',
              'pulse': f'pulse {PULSE_S} s m/s^2', 'slide': 'slide p-p eta 2 / eta 3, m (1-DOF)'}[c] for c in checks) + " |",
                   "|---|" + "---|" * len(checks)]
-        for fid, law, implicit in CONFIGS:
+        for fid, law, implicit in configs:
             r = by.get((kind, config_name(fid, law, implicit)))
             if r is None: continue
             ref = by.get((kind, config_name('rigid', law, None)), {}) if fid == 'full' else {}
@@ -228,7 +252,7 @@ def table(rows, checks):
             lines.append(f"| {r['config']} | " + " | ".join(cells) + " |")
         if kind == 'block':
             D, ex = KINDS['block']
-            lines.append(f"\nClosed form (rigid block, centre of gravity at H/2): ramp and sudden load g b/h = {G * (D / 2) / (ex['height'] / 2):.3f} m/s^2.")
+            lines.append(f"\nClosed form (rigid block, centre of gravity at H/2): ramp, hold and sudden load g b/h = {G * (D / 2) / (ex['height'] / 2):.3f} m/s^2.")
     return "\n".join(lines) + "\n"
 
 
@@ -240,9 +264,16 @@ if __name__ == '__main__':
     ap.add_argument('--kinds', default=','.join(KINDS))
     ap.add_argument('--checks', default='rest,ramp,sudden,pulse,slide')
     ap.add_argument('--out', default='docs/contact/full_vs_rigid.md')
+    ap.add_argument('--configs', default=None, help='a comma-separated subset of the columns, e.g. "rigid stiff,full stiff"')
     ap.add_argument('--frame-drift', type=float, default=None, help='integrator.frame_drift_refresh of every scene (rad)')
     a = ap.parse_args()
     FRAME_DRIFT = a.frame_drift
+    configs = CONFIGS
+    if a.configs:
+        names = [c.strip() for c in a.configs.split(',')]
+        configs = [c for c in CONFIGS if config_name(*c) in names]
+        if len(configs) != len(names):
+            ap.error(f"--configs: {a.configs!r}: known columns are {', '.join(config_name(*c) for c in CONFIGS)}")
     if a.table_from:
         def number(v):
             try:
@@ -250,7 +281,7 @@ if __name__ == '__main__':
             except ValueError:
                 return v if v != '' else None
         rows = [{k: number(v) for k, v in r.items()} for r in csv.DictReader(open(a.table_from))]
-        sys.stdout.write(table(rows, a.checks.split(',')))
+        sys.stdout.write(table(rows, a.checks.split(','), configs))
         sys.exit(0)
     if not a.binary:
         ap.error('the furniture_quake binary is needed (or --table-from CSV)')
@@ -262,12 +293,12 @@ if __name__ == '__main__':
     started = time.time()
     # The rigid columns first: their thresholds bracket the full items' bisections.
     with cf.ProcessPoolExecutor(a.jobs) as pool:
-        rigid = [(k, f, l, i) for k in kinds for f, l, i in CONFIGS if f == 'rigid']
+        rigid = [(k, f, l, i) for k in kinds for f, l, i in configs if f == 'rigid']
         for r in pool.map(measure, *zip(*rigid), [checks] * len(rigid), [{}] * len(rigid)):
             rows.append(r)
         guess = {(r['kind'], r['config'].split()[1]): r for r in rows}
-        full = [(k, f, l, i) for k in kinds if k != 'block' for f, l, i in CONFIGS if f == 'full']
-        gs = [{c: guess[(k, l)].get(c) for c in ('sudden', 'pulse') if guess[(k, l)].get(c) not in (None, math.inf)} for k, f, l, i in full]
+        full = [(k, f, l, i) for k in kinds if k != 'block' for f, l, i in configs if f == 'full']
+        gs = [{c: guess[(k, l)].get(c) for c in ('hold', 'sudden', 'pulse') if guess[(k, l)].get(c) not in (None, math.inf)} for k, f, l, i in full]
         for r in pool.map(measure, *zip(*full), [checks] * len(full), gs):
             rows.append(r)
     keys = sorted({k for r in rows for k in r})
@@ -276,11 +307,12 @@ if __name__ == '__main__':
     with open(a.out, 'w') as f:
         f.write("# Full against rigid, measured (generated)\n\n"
                 f"Written by `python3 scripts/full_vs_rigid.py {a.binary} --jobs {a.jobs} --kinds {a.kinds} --checks {a.checks}"
+                + (f" --configs \"{a.configs}\"" if a.configs else "")
                 + (f" --frame-drift {a.frame_drift:g}" if a.frame_drift is not None else "") + "` "
                 f"in {time.time() - started:.0f} s of wall time; what each check is: the script's header. The percentages "
                 "of a full row are against the rigid row of the same law; those of the slides against the exact 1-DOF "
                 "Coulomb block. `none`: no overturn up to the bracket's top. `*`: at least one run of that bisection "
                 "stopped (the energy check) after its item had tilted past 60 deg; it counts as overturned. How to read it: docs/contact/verification_contact.md, "
                 "\"Full items against rigid ones, through scene files\".\n")
-        f.write(table(rows, checks))
+        f.write(table(rows, checks, configs))
     print(f"wrote {a.out}")
