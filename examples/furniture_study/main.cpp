@@ -9,6 +9,7 @@
 // Exit codes: 0 every run completed, 1 bad input (a study, scene or record file), 2 usage, 3 some runs
 // did not complete (diverged or failed: the statistics count the others), 4 no run completed, 130
 // interrupted (the study stops cleanly: finished runs are kept, --resume continues it).
+#include <furniture_fem/study/realisation.hpp>
 #include <furniture_fem/study/runner.hpp>
 
 #include <CLI/CLI.hpp>

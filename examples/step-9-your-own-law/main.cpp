@@ -5,7 +5,8 @@
 // files and study variants name it as they name a built-in law: configuration 3 runs under it, and a
 // small study compares it with the paper's law on the same realisations. Nothing in the library is
 // edited, and the program compiles none of the solver: it links the compiled scene runner, whose one
-// run path takes any registered law as a run-time kernel (docs/contact/contact.md, "Adding a contact law").
+// run path takes any registered law as a run-time kernel (docs/contact/contact.md, "Adding a contact law"),
+// and the compiled study, whose runs take that path.
 #include <furniture_fem/scene/laws/law_list.hpp>
 #include <furniture_fem/scene/paper_configurations.hpp>
 #include <furniture_fem/scene/run_scene.hpp>

@@ -4,6 +4,9 @@
 // realisations recorded with their diagnosis; the study's figures from hand-made results.
 #include <catch2/catch.hpp>
 
+#include <furniture_fem/scene/observers.hpp>
+#include <furniture_fem/study/figures.hpp>
+#include <furniture_fem/study/realisation.hpp>
 #include <furniture_fem/study/runner.hpp>
 
 #include "../figures/png_reader.hpp"

@@ -5,6 +5,7 @@
 // changed study names the keys that differ; a scene without a ground_motion runs its default motion.
 #include <catch2/catch.hpp>
 
+#include <furniture_fem/study/realisation.hpp>
 #include <furniture_fem/study/runner.hpp>
 
 #include "../support/test_files.hpp"

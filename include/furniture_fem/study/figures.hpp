@@ -27,6 +27,11 @@
 #include "report.hpp"
 #include "spec.hpp"
 
+#define FURNITURE_FEM_STUDY_INTERNAL
+#include "detail/measure_names.hpp"
+#include "detail/study_files.hpp"
+#undef FURNITURE_FEM_STUDY_INTERNAL
+
 namespace furniture_fem {
 namespace detail {
 

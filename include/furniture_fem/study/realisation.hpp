@@ -16,9 +16,12 @@
 #include <string>
 #include <vector>
 
-#include "../scene/scene.hpp"
 #include "random.hpp"
 #include "spec.hpp"
+
+#define FURNITURE_FEM_STUDY_INTERNAL
+#include "detail/run_start_checks.hpp"  // how a level and a start shift set the ground motion
+#undef FURNITURE_FEM_STUDY_INTERNAL
 
 namespace furniture_fem {
 
