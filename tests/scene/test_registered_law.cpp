@@ -82,7 +82,7 @@ TEST_CASE("a registered law goes through the reader, the writer and validation",
   const SceneSpec s = parsed(cubic_scene({{"k3", 2e13}, {"mu", 0.3}}));
   CHECK(s.contact.law == cubic_law());
   CHECK(scene_law(s.contact.law).name == "cubic");
-  CHECK(s.contact.floor.own.at("k3") == 2e13);
+  CHECK(s.contact.floor.values.at("k3") == 2e13);
   const json written = to_json(s);
   CHECK(written["contact"]["law"] == "cubic");
   CHECK(written["contact"]["floor"]["k3"] == 2e13);
@@ -119,9 +119,9 @@ TEST_CASE("a registered law's keys: out of range, undeclared or another law's ar
              Contains("contact.floor.k3") && Contains("not used by the contact law \"paper\""));
   // A spec made in code: validate() checks the law's own values as the reader does.
   SceneSpec s = parsed(cubic_scene());
-  s.contact.wall.own["k3"] = 0.0;
+  s.contact.wall.values["k3"] = 0.0;
   CHECK_THAT(input_error([&] { validate(s); }), Contains("contact.wall.k3") && Contains("\"cubic\"") && Contains("got 0"));
-  s.contact.wall.own = {{"k9", 1.0}};
+  s.contact.wall.values = {{"k9", 1.0}};
   CHECK_THAT(input_error([&] { validate(s); }), Contains("contact.wall.k9") && Contains("not used by the contact law \"cubic\""));
 }
 
@@ -137,8 +137,9 @@ TEST_CASE("every key a registered law declares changes its force", "[scene][laws
   const std::map<std::string, double> values{{"dc_kgf", 77.0}, {"q", 1.5}, {"mu", 0.123}, {"mu_long", 0.234}, {"k3", 3e13}};
   const SceneLawInfo& law = scene_law(cubic_law());
   const auto base = floor_forces(floor_params(parsed(cubic_scene())));
-  std::vector<std::string> keys(law.parameters.begin(), law.parameters.end());
-  for (const auto& p : law.own_parameters) keys.emplace_back(p.key);
+  // Its parts' keys (the paper's damping and friction) and its own, through the same declarations.
+  std::vector<std::string> keys;
+  for (const auto& p : law.parameters) keys.emplace_back(p.key);
   REQUIRE(keys.size() == values.size());
   for (const std::string& key : keys) {
     INFO("key " << key);
