@@ -174,4 +174,57 @@ TEST_CASE("a block rests where the registered law's cubic spring carries its wei
   for (double d : sink.sinks) CHECK(d == Approx(expected).epsilon(1e-3));
 }
 
+namespace {
+// A part that declares a slot of its own (a spring in law_params[0]) and a record that adds a parameter no
+// part reads: the record's goes to the slot after its parts'.
+struct SlotSpring {
+  static constexpr std::array parameters{
+      LawParameter{.key = "k_slot", .unit = "N/m", .lo = 0, .hi = 1e9, .lo_exclusive = true, .default_value = 2e5,
+                   .meaning = "a linear spring in slot 0", .per_node = true, .slot = 0}};
+  double force(const ContactKinematics& k, const ContactParams& p, double, double) const {
+    return p.law_params[0] * (k.L - k.l);
+  }
+};
+struct SlotSceneLaw : SceneLawDefaults {
+  static constexpr std::string_view name = "slot_spring";
+  using law = ContactLaw<SlotSpring, NoDamping, RegularisedCoulomb>;
+  static constexpr std::array<LawParameter, 1> own_parameters{
+      {{.key = "extra", .unit = "-", .lo = 0, .hi = 1, .default_value = 0.5, .meaning = "read by no part"}}};
+};
+struct CrowdedSceneLaw : SlotSceneLaw {  // 1 part slot and 4 own: one more than ContactParams holds
+  static constexpr LawParameter own(std::string_view key) {
+    return {.key = key, .unit = "-", .lo = 0, .hi = 1, .meaning = "unused"};
+  }
+  static constexpr std::array<LawParameter, 4> own_parameters{own("a"), own("b"), own("c"), own("d")};
+};
+}  // namespace
+
+// A part's own parameter and a record's go through the same declarations: the scene keys, the slots'
+// defaults, the overrides, the share scaling (the part's per_node slot in the kernel's mask).
+TEST_CASE("a part's own parameter and a record's share one mechanism", "[scene][laws][registered]") {
+  const SceneLawInfo law = SceneLawInfo::of<SlotSceneLaw>();
+  std::vector<std::string_view> keys;
+  for (const auto& p : law.parameters) keys.push_back(p.key);
+  CHECK(keys == std::vector<std::string_view>{"k_slot", "mu", "mu_long", "extra"});
+  CHECK(law.parameter("k_slot")->slot == 0);
+  CHECK(law.parameter("extra")->slot == 1);
+  ContactParams p;
+  law.set_slot_defaults(p);
+  CHECK(p.law_params[0] == 2e5);
+  CHECK(p.law_params[1] == 0.5);
+  CHECK(p.law_params_per_node == 1u);
+  law.apply(p, ContactOverrides{{{"k_slot", 3e5}, {"extra", 0.25}, {"mu", 0.4}}});
+  CHECK(p.law_params[0] == 3e5);
+  CHECK(p.law_params[1] == 0.25);
+  CHECK(p.mu == 0.4);
+  const unsigned mask = law.kernel->per_node_mask();
+  CHECK(mask == 1u << ContactParams::named_fields().size());
+  p.scale_per_node(4.0, mask);
+  CHECK(p.law_params[0] == 12e5);
+  CHECK(p.law_params[1] == 0.25);
+  CHECK(p.mu == 0.4);
+  CHECK_THROWS_WITH(SceneLawInfo::of<CrowdedSceneLaw>(),
+                    Contains("contact law \"slot_spring\"") && Contains("more than 4 parameters of its own"));
+}
+
 }  // namespace registered_law_tests
