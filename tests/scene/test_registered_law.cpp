@@ -191,11 +191,12 @@ struct SlotSceneLaw : SceneLawDefaults {
   static constexpr std::array<LawParameter, 1> own_parameters{
       {{.key = "extra", .unit = "-", .lo = 0, .hi = 1, .default_value = 0.5, .meaning = "read by no part"}}};
 };
+constexpr LawParameter unused_parameter(std::string_view key) {
+  return {.key = key, .unit = "-", .lo = 0, .hi = 1, .meaning = "unused"};
+}
 struct CrowdedSceneLaw : SlotSceneLaw {  // 1 part slot and 4 own: one more than ContactParams holds
-  static constexpr LawParameter own(std::string_view key) {
-    return {.key = key, .unit = "-", .lo = 0, .hi = 1, .meaning = "unused"};
-  }
-  static constexpr std::array<LawParameter, 4> own_parameters{own("a"), own("b"), own("c"), own("d")};
+  static constexpr std::array<LawParameter, 4> own_parameters{unused_parameter("a"), unused_parameter("b"),
+                                                              unused_parameter("c"), unused_parameter("d")};
 };
 }  // namespace
 

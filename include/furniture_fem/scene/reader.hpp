@@ -66,8 +66,9 @@ inline ContactOverrides parse_contact_overrides(const ObjectReader& r, ContactLa
   const SceneLawInfo& law = scene_law(kind);
   const std::string of_law = "contact law \"" + std::string(law.name) + "\"";
   std::vector<std::string_view> allowed;
-  for (const auto& p : law.parameters)
-    if (is_floor || !p.floor_only) allowed.push_back(p.key);
+  for (const auto& p : law.parameters)  // a key setting two fields is declared twice, allowed once
+    if ((is_floor || !p.floor_only) && std::find(allowed.begin(), allowed.end(), p.key) == allowed.end())
+      allowed.push_back(p.key);
   for (std::string_view key : law.rule_parameters)
     if (r.has(key)) r.fail(r.path(key), "not used by the " + of_law + ": " + std::string(law.rule_parameters_why));
   // Another registered law's key: not this law's (allow_only would call it unknown).
