@@ -22,8 +22,14 @@ using namespace furniture_fem;
 
 namespace {
 
-// The normal part: k_hertz d^1.5 on the overlap d = L - l, k_hertz read from the law's own slot 0.
+// The normal part: k_hertz d^1.5 on the overlap d = L - l. It declares the parameter it reads, k_hertz,
+// kept in the law's slot 0 (ContactParams::law_params[0]); the paper's parts declare theirs (dc_kgf, q, mu,
+// mu_long), and the law's scene keys are those of its parts.
 struct HertzSpring {
+  static constexpr std::array parameters{
+      LawParameter{.key = "k_hertz", .unit = "N/m^1.5", .lo = 0, .hi = 1e15, .lo_exclusive = true, .default_value = 3e7,
+                   .meaning = "Hertz spring k_hertz (L - l)^1.5 per node", .per_node = true, .slot = 0},
+  };
   double force(const ContactKinematics& k, const ContactParams& p, double, double) const {
     const double d = k.L - k.l;
     return p.law_params[0] * d * std::sqrt(d);
@@ -33,15 +39,10 @@ struct HertzSpring {
   }
 };
 
-// The scene law: its name, its composed law, the shared keys it reads and its own parameter.
+// The scene law: its name and its composed law.
 struct HertzPaperSceneLaw : SceneLawDefaults {
   static constexpr std::string_view name = "hertz_paper";
   using law = ContactLaw<HertzSpring, PaperSignDamping, PaperSignFriction>;
-  static constexpr std::array<std::string_view, 4> parameters{"dc_kgf", "q", "mu", "mu_long"};
-  static constexpr std::array<LawParameter, 1> own_parameters{{
-      {.key = "k_hertz", .unit = "N/m^1.5", .lo = 0, .hi = 1e15, .lo_exclusive = true, .default_value = 3e7,
-       .meaning = "Hertz spring k_hertz (L - l)^1.5 per node", .per_node = true},
-  }};
 };
 
 const char* study_json = R"({

@@ -10,6 +10,8 @@
 #include "../support/input_errors.hpp"
 #include "../support/test_files.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <string>
 
@@ -27,7 +29,8 @@ json law_scene(const json& contact) {
   return {{"items", json::array({{{"kind", "side_table"}}})}, {"contact", contact}, {"solver", "direct"}};
 }
 
-// A value in each key's range, away from the defaults (small enough for stick_slip to stick at the slow speed).
+// A value in each key's range, away from the defaults (small enough for stick_slip to stick at the slow speed);
+// every key a built-in law declares has one (checked).
 const std::map<std::string_view, double> key_values{{"alpha_kgf", 123.0}, {"dc_kgf", 77.0},      {"q", 1.5},
                                                     {"mu", 0.123},        {"mu_long", 0.234},    {"mu_short", 0.05},
                                                     {"stiffness", 3.3e3}, {"damping", 4.5}};
@@ -50,20 +53,36 @@ std::vector<Vec3> floor_forces(const ContactParams& p) {
   return out;
 }
 
-// The record of docs/contact/contact.md, "Adding a contact law", is one; a key outside contact_parameters is not.
+// The record of docs/contact/contact.md, "Adding a contact law", is one: its parts declare its keys. A record
+// with a hand-kept key list is not, nor one whose own key is one of its parts'.
 struct CubicPenalty {
   double force(const ContactKinematics&, const ContactParams& p, double g, double) const { return p.alpha * g * g * g; }
 };
 struct CubicSceneLaw : SceneLawDefaults {
   static constexpr std::string_view name = "cubic";
   using law = ContactLaw<CubicPenalty, PaperSignDamping, PaperSignFriction>;
-  static constexpr std::array<std::string_view, 3> parameters{"alpha_kgf", "mu", "mu_long"};
 };
-struct MisspeltSceneLaw : CubicSceneLaw {
-  static constexpr std::array<std::string_view, 1> parameters{"alpha"};
+struct HandListedSceneLaw : CubicSceneLaw {
+  static constexpr std::array<std::string_view, 1> parameters{"alpha_kgf"};
+};
+struct OwnQSceneLaw : CubicSceneLaw {
+  static constexpr std::array<LawParameter, 1> own_parameters{{{.key = "q", .unit = "-", .lo = 0, .hi = 1, .meaning = "a second q"}}};
 };
 static_assert(SceneContactLaw<CubicSceneLaw>);
-static_assert(!SceneContactLaw<MisspeltSceneLaw>);
+static_assert(!SceneContactLaw<HandListedSceneLaw>);
+static_assert(!SceneContactLaw<OwnQSceneLaw>);
+// Its keys are its parts': the damping's dc_kgf and q, the friction's mu and mu_long (CubicPenalty declares none).
+static_assert(contact_law_parameters<CubicSceneLaw::law>.size() == 4);
+
+// Every key any built-in law declares, and the rule keys.
+std::vector<std::string_view> all_keys() {
+  const ContactLawRegistry builtin = builtin_contact_law_registry();
+  std::vector<std::string_view> keys;  // views of the declarations, which are static
+  for (const auto& law : builtin.laws())
+    for (const auto& p : law.kernel->parameters())
+      if (std::find(keys.begin(), keys.end(), p.key) == keys.end()) keys.push_back(p.key);
+  return keys;
+}
 
 template <class F>
 void for_each_law(F&& f) {
@@ -133,35 +152,83 @@ TEST_CASE("every contact law runs with either linear solver, to the same motion"
   });
 }
 
+// Generated from the declarations: each key a law's parts declare, given on the floor, reaches each field
+// it names as the declaration stores it (kgf in N: 9.80665 times; Hunt-Crossley's stiffness over
+// sqrt(0.025 m)) and changes the force on a node 5 mm into the floor.
 TEST_CASE("every key a contact law declares is read and changes its force", "[scene][laws]") {
-  for (const auto& p : contact_parameters) REQUIRE(key_values.count(p.key) == 1);
+  for (std::string_view key : all_keys()) REQUIRE(key_values.count(key) == 1);
   for_each_law([]<class R>() {
     const std::string name(R::name);
+    const SceneLawInfo& law = scene_law(law_kind<R>);
     const auto base = floor_forces<typename R::law>(floor_params(parse_scene_json(law_scene({{"law", name}}), "laws.json")));
-    for (std::string_view key : R::parameters) {
+    REQUIRE(!law.parameters.empty());
+    for (const LawParameter& declared : law.parameters) {
+      const std::string key(declared.key);
       INFO("law " << name << ", key " << key);
       const double value = key_values.at(key);
-      const SceneSpec s = parse_scene_json(law_scene({{"law", name}, {"floor", {{std::string(key), value}}}}), "laws.json");
-      CHECK(s.contact.floor.*(find_contact_parameter(key)->field) == value);
-      const auto changed = floor_forces<typename R::law>(floor_params(s));
+      const SceneSpec s = parse_scene_json(law_scene({{"law", name}, {"floor", {{key, value}}}}), "laws.json");
+      CHECK(s.contact.floor.values.at(key) == value);
+      const ContactParams p = floor_params(s);
+      CHECK(p.value(declared) == declared.stored(value));
+      const auto changed = floor_forces<typename R::law>(p);
       CHECK((changed[0] != base[0] || changed[1] != base[1]));
     }
   });
+  // The stored forms, against their closed forms.
+  CHECK(part_parameters::alpha_kgf.stored(2.0) == 2.0 * 9.80665);
+  CHECK(HuntCrossley::parameters[0].stored(3.3e3) == 3.3e3 / std::sqrt(0.025));
+}
+
+// A contact standing for n nodes (a rigid item's support point) takes n times each value a law declares
+// per_node, and the others as they are: the paper's alpha and Dc, the springs and dashpots.
+TEST_CASE("a contact law's per-node parameters scale with the node share, the others do not", "[scene][laws]") {
+  for_each_law([]<class R>() {
+    INFO("law " << R::name);
+    const SceneLawInfo& law = scene_law(law_kind<R>);
+    ContactParams p = floor_params(parse_scene_json(law_scene({{"law", std::string(R::name)}}), "laws.json"));
+    p.mu_long = 0.3, p.mu_short = 0.2;  // distinct from mu, so that a mixed-up field shows
+    ContactParams scaled = p;
+    scaled.scale_per_node(3.0, law.kernel->per_node_mask());
+    int per_node = 0;
+    for (const LawParameter& d : law.kernel->parameters()) {
+      INFO("key " << d.key);
+      CHECK(scaled.value(d) == (d.per_node ? 3.0 : 1.0) * p.value(d));
+      per_node += d.per_node;
+    }
+    CHECK(per_node >= 1);
+    CHECK(scaled.mu == p.mu);
+    CHECK(scaled.v_reg == p.v_reg);
+  });
+  const unsigned paper = make_contact_law_kernel<PaperLaw>()->per_node_mask();
+  CHECK(paper == (ContactParams::storage_bit(part_parameters::alpha_kgf) | ContactParams::storage_bit(part_parameters::dc_kgf)));
 }
 
 TEST_CASE("every key a contact law does not declare is an error naming the key and the law", "[scene][laws]") {
   for_each_law([]<class R>() {
     const std::string name(R::name);
-    for (const auto& p : contact_parameters) {
-      if (scene_law(law_kind<R>).reads(p.key)) continue;
-      const std::string key(p.key);
+    const SceneLawInfo& law = scene_law(law_kind<R>);
+    for (std::string_view other : all_keys()) {
+      if (law.reads(other)) continue;
+      const std::string key(other);
+      // A key its item rule sets (stiff's stiffness and damping) says why.
+      const std::string expected = "not used by the contact law \"" + name + "\"" + (law.set_by_rule(key) ? ": it sets" : "");
       for (const std::string pair : {"floor", "wall", "item"}) {
-        if (p.floor_only && pair != "floor") continue;
         INFO("law " << name << ", " << pair << "." << key);
-        const json j = law_scene({{"law", name}, {pair, {{key, key_values.at(p.key)}}}});
+        const json j = law_scene({{"law", name}, {pair, {{key, key_values.at(key)}}}});
         CHECK_THAT(input_error([&] { parse_scene_json(j, "laws.json"); }),
-                   Contains("contact." + pair + "." + key) && Contains("not used by the contact law \"" + name + "\""));
+                   Contains("contact." + pair + "." + key) && Contains(expected));
+        // The same given in code, to validate().
+        SceneSpec s = parse_scene_json(law_scene({{"law", name}}), "laws.json");
+        (pair == "floor" ? s.contact.floor : pair == "wall" ? s.contact.wall : s.contact.item).values[key] = 1.0;
+        CHECK_THAT(input_error([&] { validate(s); }), Contains("contact." + pair + "." + key) && Contains(expected));
       }
+    }
+    // A floor-only key elsewhere.
+    for (const LawParameter& p : law.parameters) {
+      if (!p.floor_only) continue;
+      INFO("law " << name << ", wall." << p.key);
+      const json j = law_scene({{"law", name}, {"wall", {{std::string(p.key), 0.1}}}});
+      CHECK_THAT(input_error([&] { parse_scene_json(j, "laws.json"); }), Contains("contact.wall." + std::string(p.key)));
     }
     for (std::string_view item_key : R::unused_item_parameters) {
       const std::string key(item_key);

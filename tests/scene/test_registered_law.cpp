@@ -82,7 +82,7 @@ TEST_CASE("a registered law goes through the reader, the writer and validation",
   const SceneSpec s = parsed(cubic_scene({{"k3", 2e13}, {"mu", 0.3}}));
   CHECK(s.contact.law == cubic_law());
   CHECK(scene_law(s.contact.law).name == "cubic");
-  CHECK(s.contact.floor.own.at("k3") == 2e13);
+  CHECK(s.contact.floor.values.at("k3") == 2e13);
   const json written = to_json(s);
   CHECK(written["contact"]["law"] == "cubic");
   CHECK(written["contact"]["floor"]["k3"] == 2e13);
@@ -119,9 +119,9 @@ TEST_CASE("a registered law's keys: out of range, undeclared or another law's ar
              Contains("contact.floor.k3") && Contains("not used by the contact law \"paper\""));
   // A spec made in code: validate() checks the law's own values as the reader does.
   SceneSpec s = parsed(cubic_scene());
-  s.contact.wall.own["k3"] = 0.0;
+  s.contact.wall.values["k3"] = 0.0;
   CHECK_THAT(input_error([&] { validate(s); }), Contains("contact.wall.k3") && Contains("\"cubic\"") && Contains("got 0"));
-  s.contact.wall.own = {{"k9", 1.0}};
+  s.contact.wall.values = {{"k9", 1.0}};
   CHECK_THAT(input_error([&] { validate(s); }), Contains("contact.wall.k9") && Contains("not used by the contact law \"cubic\""));
 }
 
@@ -137,8 +137,9 @@ TEST_CASE("every key a registered law declares changes its force", "[scene][laws
   const std::map<std::string, double> values{{"dc_kgf", 77.0}, {"q", 1.5}, {"mu", 0.123}, {"mu_long", 0.234}, {"k3", 3e13}};
   const SceneLawInfo& law = scene_law(cubic_law());
   const auto base = floor_forces(floor_params(parsed(cubic_scene())));
-  std::vector<std::string> keys(law.parameters.begin(), law.parameters.end());
-  for (const auto& p : law.own_parameters) keys.emplace_back(p.key);
+  // Its parts' keys (the paper's damping and friction) and its own, through the same declarations.
+  std::vector<std::string> keys;
+  for (const auto& p : law.parameters) keys.emplace_back(p.key);
   REQUIRE(keys.size() == values.size());
   for (const std::string& key : keys) {
     INFO("key " << key);
@@ -171,6 +172,60 @@ TEST_CASE("a block rests where the registered law's cubic spring carries its wei
   const double expected = std::cbrt(sink.mass * 9.80665 / (sink.nodes * 1e13));
   INFO(sink.nodes << " bottom nodes, expected sink " << expected << " m");
   for (double d : sink.sinks) CHECK(d == Approx(expected).epsilon(1e-3));
+}
+
+namespace {
+// A part that declares a slot of its own (a spring in law_params[0]) and a record that adds a parameter no
+// part reads: the record's goes to the slot after its parts'.
+struct SlotSpring {
+  static constexpr std::array parameters{
+      LawParameter{.key = "k_slot", .unit = "N/m", .lo = 0, .hi = 1e9, .lo_exclusive = true, .default_value = 2e5,
+                   .meaning = "a linear spring in slot 0", .per_node = true, .slot = 0}};
+  double force(const ContactKinematics& k, const ContactParams& p, double, double) const {
+    return p.law_params[0] * (k.L - k.l);
+  }
+};
+struct SlotSceneLaw : SceneLawDefaults {
+  static constexpr std::string_view name = "slot_spring";
+  using law = ContactLaw<SlotSpring, NoDamping, RegularisedCoulomb>;
+  static constexpr std::array<LawParameter, 1> own_parameters{
+      {{.key = "extra", .unit = "-", .lo = 0, .hi = 1, .default_value = 0.5, .meaning = "read by no part"}}};
+};
+constexpr LawParameter unused_parameter(std::string_view key) {
+  return {.key = key, .unit = "-", .lo = 0, .hi = 1, .meaning = "unused"};
+}
+struct CrowdedSceneLaw : SlotSceneLaw {  // 1 part slot and 4 own: one more than ContactParams holds
+  static constexpr std::array<LawParameter, 4> own_parameters{unused_parameter("a"), unused_parameter("b"),
+                                                              unused_parameter("c"), unused_parameter("d")};
+};
+}  // namespace
+
+// A part's own parameter and a record's go through the same declarations: the scene keys, the slots'
+// defaults, the overrides, the share scaling (the part's per_node slot in the kernel's mask).
+TEST_CASE("a part's own parameter and a record's share one mechanism", "[scene][laws][registered]") {
+  const SceneLawInfo law = SceneLawInfo::of<SlotSceneLaw>();
+  std::vector<std::string_view> keys;
+  for (const auto& p : law.parameters) keys.push_back(p.key);
+  CHECK(keys == std::vector<std::string_view>{"k_slot", "mu", "mu_long", "extra"});
+  CHECK(law.parameter("k_slot")->slot == 0);
+  CHECK(law.parameter("extra")->slot == 1);
+  ContactParams p;
+  law.set_slot_defaults(p);
+  CHECK(p.law_params[0] == 2e5);
+  CHECK(p.law_params[1] == 0.5);
+  CHECK(p.law_params_per_node == 1u);
+  law.apply(p, ContactOverrides{{{"k_slot", 3e5}, {"extra", 0.25}, {"mu", 0.4}}});
+  CHECK(p.law_params[0] == 3e5);
+  CHECK(p.law_params[1] == 0.25);
+  CHECK(p.mu == 0.4);
+  const unsigned mask = law.kernel->per_node_mask();
+  CHECK(mask == 1u << ContactParams::named_fields().size());
+  p.scale_per_node(4.0, mask);
+  CHECK(p.law_params[0] == 12e5);
+  CHECK(p.law_params[1] == 0.25);
+  CHECK(p.mu == 0.4);
+  CHECK_THROWS_WITH(SceneLawInfo::of<CrowdedSceneLaw>(),
+                    Contains("contact law \"slot_spring\"") && Contains("more than 4 parameters of its own"));
 }
 
 }  // namespace registered_law_tests

@@ -26,7 +26,6 @@ struct CubicSpring {
 struct CubicSceneLaw : furniture_fem::SceneLawDefaults {
   static constexpr std::string_view name = "cubic";
   using law = furniture_fem::ContactLaw<CubicSpring, furniture_fem::PaperSignDamping, furniture_fem::PaperSignFriction>;
-  static constexpr std::array<std::string_view, 4> parameters{"dc_kgf", "q", "mu", "mu_long"};
   static constexpr std::array<furniture_fem::LawParameter, 1> own_parameters{{
       {.key = "k3", .unit = "N/m^3", .lo = 0, .hi = 1e20, .lo_exclusive = true, .default_value = 1e13,
        .meaning = "the cubic spring: k3 (L - l)^3 per node", .per_node = true},

@@ -5,6 +5,7 @@
 //   ContactLaw<Normal, Damping, Friction>   the law; each part is a tiny policy class
 //   PaperLaw, PaperAnisotropicFloorLaw, SpringDashpotLaw, HuntCrossleyLaw, StickSlipLaw   presets
 //   ContactParams                           runtime values, one set per kind of pair
+//   <Part>::parameters                      what a part reads, declared (LawParameter, law_parameter.hpp)
 //   ContactState                            per-contact history kept by the caller across steps
 //   evaluate_segment_pair / evaluate_node_plane / evaluate_node_rectangle   pair-level helpers
 //
@@ -25,6 +26,7 @@
 #include <utility>
 
 #include "contact_geometry.hpp"
+#include "law_parameter.hpp"
 #include "../core/model.hpp"
 
 namespace furniture_fem {
@@ -43,7 +45,7 @@ struct ContactKinematics {
 };
 
 // Runtime parameters, one set per kind of pair (item-floor, item-wall, item-item). Units SI.
-// Each law reads only the fields its parts use; validate() checks them all.
+// Each law reads only the fields its parts declare (LawParameter); validate() checks them all.
 struct ContactParams {
   static constexpr double newtons_per_kgf = 9.80665;
 
@@ -64,12 +66,12 @@ struct ContactParams {
   double c_lin = 0;       // N s/m: viscous normal damping (ViscousDamping)
   double k_hc = 0;        // N/m^1.5: Hunt-Crossley stiffness (HuntCrossley)
   double hc_damping = 0;  // s/m: Hunt-Crossley damping factor (HuntCrossley)
-  // A registered law's own parameters (scene/laws/law_record.hpp, LawParameter): slot i holds its
-  // record's own_parameters[i], set once per item at set-up. The built-in laws use none (all 0).
+  // A law's own parameters (LawParameter::slot): slot i holds the value of the declaration naming it, set
+  // once per item at set-up. The built-in laws use none (all 0).
   static constexpr std::size_t max_law_params = 4;
   std::array<double, max_law_params> law_params{};
   // Bit i set: law_params[i] is a force coefficient, scaled with a contact's share of nodes as alpha is
-  // (RoomContact's support points; LawParameter::per_node).
+  // (a record's own per_node parameters; the parts' are the law kernel's per_node_mask).
   unsigned law_params_per_node = 0;
 
   // Every field, named: validate() checks each and pair() combines each, so a new field is seen by both.
@@ -105,6 +107,37 @@ struct ContactParams {
     for (std::size_t i = 0; i < max_law_params; ++i) p.law_params[i] = 0.5 * (a.law_params[i] + b.law_params[i]);
     p.law_params_per_node = a.law_params_per_node | b.law_params_per_node;
     return p;
+  }
+
+  // Where a declared parameter is kept, and its scene value stored there (kgf to N ...).
+  double& value(const LawParameter& d) { return d.field ? this->*d.field : law_params[d.slot]; }
+  double value(const LawParameter& d) const { return d.field ? this->*d.field : law_params[d.slot]; }
+  void set(const LawParameter& d, double scene_value) { value(d) = d.stored(scene_value); }
+
+  // A declaration's bit in a share mask: its field's place in named_fields(), or past them its slot.
+  static constexpr unsigned storage_bit(const LawParameter& d) {
+    constexpr auto fields = named_fields();
+    for (std::size_t i = 0; i < fields.size(); ++i)
+      if (d.field == fields[i].second) return 1u << i;
+    return 1u << (fields.size() + d.slot);
+  }
+  // The bits of the per_node declarations: what a contact standing for several nodes scales.
+  template <class Declarations>
+  static constexpr unsigned per_node_mask(const Declarations& declared) {
+    unsigned mask = 0;
+    for (const LawParameter& d : declared)
+      if (d.per_node) mask |= storage_bit(d);
+    return mask;
+  }
+  // A contact standing for `share` nodes: the fields and slots of `mask` (per_node_mask) and the slots of
+  // law_params_per_node made `share` times one node's.
+  void scale_per_node(double share, unsigned mask) {
+    constexpr auto fields = named_fields();
+    mask |= law_params_per_node << fields.size();
+    for (std::size_t i = 0; mask != 0; ++i, mask >>= 1) {
+      if (!(mask & 1u)) continue;
+      (i < fields.size() ? this->*(fields[i].second) : law_params[i - fields.size()]) *= share;
+    }
   }
 
   // The paper's rules (Table 4): alpha = the item's weight (given in kgf, stored in N), q = 1,
@@ -302,6 +335,40 @@ TangentialForce sticking_coulomb(const ContactKinematics& k, double N, double mu
 }  // namespace detail
 
 // ---------------------------------------------------------------------------------------------
+// The parts' parameters: each part lists the keys it reads as `parameters` (LawParameter); the scene keys
+// of a law are those of its parts. Shared declarations are named here (q: the penalty and the damping).
+
+namespace part_parameters {
+inline double kgf_to_newtons(double v) { return v * ContactParams::newtons_per_kgf; }
+// Hunt-Crossley's k_hc from a linear spring's stiffness: the same force at 25 mm of overlap.
+inline double onset_to_hertz(double v) { return v / std::sqrt(0.025); }
+
+inline constexpr LawParameter alpha_kgf{.key = "alpha_kgf", .unit = "kgf", .lo = 0, .hi = 1e6, .lo_exclusive = true,
+                                        .meaning = "penalty coefficient", .per_node = true,
+                                        .field = &ContactParams::alpha, .to_si = &kgf_to_newtons};
+inline constexpr LawParameter q{.key = "q", .unit = "-", .lo = 0, .hi = 10, .lo_exclusive = true,
+                                .default_value = 1, .meaning = "penalty index", .field = &ContactParams::q};
+inline constexpr LawParameter dc_kgf{.key = "dc_kgf", .unit = "kgf", .lo = 0, .hi = 1e6,
+                                     .meaning = "damping coefficient", .per_node = true, .field = &ContactParams::Dc,
+                                     .to_si = &kgf_to_newtons};
+// Friction: mu on every pair kind; mu_long and mu_short on the floor only, each narrowing the one before
+// (a part lists them in that order: they are applied so).
+inline constexpr LawParameter mu{.key = "mu", .unit = "-", .lo = 0, .hi = 5, .meaning = "dynamic friction",
+                                 .field = &ContactParams::mu};
+inline constexpr LawParameter floor_mu{.key = "mu_long", .unit = "-", .lo = 0, .hi = 5,
+                                       .meaning = "`floor` only: along the longer edge (the isotropic laws' floor mu)",
+                                       .floor_only = true, .field = &ContactParams::mu};
+inline constexpr LawParameter stiffness(double ContactParams::*field, std::string_view meaning,
+                                        double (*to_si)(double) = nullptr) {
+  return {.key = "stiffness", .unit = "N/m", .lo = 0, .hi = 1e12, .lo_exclusive = true, .meaning = meaning,
+          .per_node = true, .field = field, .to_si = to_si};
+}
+inline constexpr LawParameter damping(double ContactParams::*field, std::string_view meaning) {
+  return {.key = "damping", .unit = "N s/m", .lo = 0, .hi = 1e12, .meaning = meaning, .per_node = true, .field = field};
+}
+}  // namespace part_parameters
+
+// ---------------------------------------------------------------------------------------------
 // Normal parts: force(k, params, g, v_n) -> force along n on A (positive pushes apart).
 // v_n = v . n is the normal relative speed: negative while approaching. Optional slopes for the
 // implicit step: stiffness() = -d force / d l, damping() = -d force / d v_n (a part without them is
@@ -310,6 +377,7 @@ TangentialForce sticking_coulomb(const ContactKinematics& k, double N, double mu
 // Paper eq. 1: alpha g^q. q = 1 is the paper's choice, q = 1.5 Hertz-like; any q > 0 works.
 struct PowerPenalty {
   static constexpr bool paper_equation = true;
+  static constexpr std::array parameters{part_parameters::alpha_kgf, part_parameters::q};
   double force(const ContactKinematics&, const ContactParams& p, double g, double) const {
     return p.alpha * detail::power(g, p.q);
   }
@@ -321,6 +389,7 @@ struct PowerPenalty {
 
 // k_lin (L - l): a linear spring on the overlap.
 struct LinearSpring {
+  static constexpr std::array parameters{part_parameters::stiffness(&ContactParams::k_lin, "the linear spring k_lin")};
   double force(const ContactKinematics& k, const ContactParams& p, double, double) const {
     return p.k_lin * (k.L - k.l);
   }
@@ -332,6 +401,9 @@ struct LinearSpring {
 // NoDamping; it vanishes with the overlap, so there is no force jump at first touch. During fast
 // release the bracket can turn negative: the law's clamp_tensile removes that pull.
 struct HuntCrossley {
+  static constexpr std::array parameters{part_parameters::stiffness(
+      &ContactParams::k_hc, "Hunt-Crossley's k_hc = stiffness / sqrt(0.025 m) (the linear spring's force at 25 mm)",
+      &part_parameters::onset_to_hertz)};
   double force(const ContactKinematics& k, const ContactParams& p, double, double v_n) const {
     const double d = k.L - k.l;
     return p.k_hc * d * std::sqrt(d) * (1.0 + 1.5 * p.hc_damping * (-v_n));
@@ -353,6 +425,7 @@ struct HuntCrossley {
 // normal speed, regularised as chosen (default ramp: -Dc g^q v_n / max(|v_n|, v_reg)).
 struct PaperSignDamping {
   static constexpr bool paper_equation = true;
+  static constexpr std::array parameters{part_parameters::dc_kgf, part_parameters::q};
   SignRegularisation regularisation = SignRegularisation::ramp;
   double force(const ContactKinematics&, const ContactParams& p, double g, double v_n) const {
     return -p.Dc * detail::power(g, p.q) * detail::regularised_sign(v_n, p.v_reg, regularisation);
@@ -371,6 +444,7 @@ struct PaperSignDamping {
 
 // -c_lin v_n: a linear dashpot.
 struct ViscousDamping {
+  static constexpr std::array parameters{part_parameters::damping(&ContactParams::c_lin, "the normal dashpot c_lin")};
   double force(const ContactKinematics&, const ContactParams& p, double, double v_n) const { return -p.c_lin * v_n; }
   double damping(const ContactKinematics&, const ContactParams& p, double, double) const { return p.c_lin; }
 };
@@ -389,6 +463,7 @@ struct NoDamping {
 // "sticking" means |v_T| < v_reg, inside the ramp (it creeps).
 struct PaperSignFriction {
   static constexpr bool paper_equation = true;
+  static constexpr std::array parameters{part_parameters::mu, part_parameters::floor_mu};
   SignRegularisation regularisation = SignRegularisation::ramp;
   FrictionNormal normal = FrictionNormal::penalty;
   TangentialForce force(const ContactKinematics& k, const ContactParams& p, const NormalForceParts& nf, const Vec3& v_t,
@@ -414,6 +489,12 @@ struct PaperSignFriction {
 // longer-edge value against walls.
 struct AnisotropicFloor {
   static constexpr bool paper_equation = true;
+  // mu sets both coefficients; then mu_long and mu_short each its own.
+  static constexpr std::array<LawParameter, 4> parameters{
+      part_parameters::mu.with_field(&ContactParams::mu_long), part_parameters::mu.with_field(&ContactParams::mu_short),
+      part_parameters::floor_mu.with_field(&ContactParams::mu_long),
+      LawParameter{.key = "mu_short", .unit = "-", .lo = 0, .hi = 5, .meaning = "`floor` only: along the shorter edge",
+                   .floor_only = true, .field = &ContactParams::mu_short}};
   SignRegularisation regularisation = SignRegularisation::ramp;
   FrictionNormal normal = FrictionNormal::penalty;
 
@@ -447,6 +528,7 @@ struct AnisotropicFloor {
 // normal force (compressive part). Below v_reg it acts like a stiff dashpot, so a block under a
 // small force creeps slowly; with p.stick_length > 0 it sticks by return mapping instead.
 struct RegularisedCoulomb {
+  static constexpr std::array parameters{part_parameters::mu, part_parameters::floor_mu};
   FrictionNormal normal = FrictionNormal::total;
   TangentialForce force(const ContactKinematics& k, const ContactParams& p, const NormalForceParts& nf, const Vec3& v_t,
                         ContactState& state) const {
@@ -477,6 +559,10 @@ struct RegularisedCoulomb {
 // the penalty part by default, matching the paper's scaling and keeping the cone steady while
 // PaperSignDamping flips sign.
 struct StickSlip {
+  static constexpr std::array parameters{
+      part_parameters::mu, part_parameters::floor_mu,
+      part_parameters::stiffness(&ContactParams::k_t, "the tangential stick spring k_t"),
+      part_parameters::damping(&ContactParams::c_t, "the tangential dashpot c_t")};
   FrictionNormal normal = FrictionNormal::penalty;
   static void check(const ContactParams& p) {
     if (!(p.k_t > 0)) throw ModelError("StickSlip: k_t must be positive (got " + detail::fmt(p.k_t) + ")");

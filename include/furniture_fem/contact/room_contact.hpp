@@ -108,6 +108,7 @@ class RoomContact {
               std::shared_ptr<const ContactLawKernel> law)
       : law_(std::move(law)), bodies_(std::move(bodies)), planes_(std::move(planes)) {
     if (!law_) throw ModelError("RoomContact: no contact law (a null kernel)");
+    per_node_mask_ = law_->per_node_mask();
     if (static_cast<int>(bodies_.size()) != model.num_bodies())
       throw ModelError("RoomContact: " + std::to_string(bodies_.size()) + " body contact records for " +
                        std::to_string(model.num_bodies()) + " bodies");
@@ -628,7 +629,8 @@ class RoomContact {
     if (!pl.is_wall && caster_[n] && bodies_[body].caster_mu >= 0) {
       prm.mu = prm.mu_long = prm.mu_short = bodies_[body].caster_mu;
     }
-    if (share != 1.0) prm = scaled_penalty(prm, share);
+    // Standing for `share` nodes: every force coefficient the law declares per_node `share` times one node's.
+    if (share != 1.0) prm.scale_per_node(share, per_node_mask_);
     return prm;
   }
 
@@ -752,13 +754,6 @@ class RoomContact {
     return group;
   }
 
-  // The parameters of a contact standing for `share` nodes: every force and tangent `share` times one node's.
-  static ContactParams scaled_penalty(ContactParams p, double share) {
-    for (double* f : {&p.alpha, &p.Dc, &p.k_lin, &p.c_lin, &p.k_t, &p.c_t, &p.k_hc}) *f *= share;
-    for (unsigned i = 0, bits = p.law_params_per_node; bits != 0; ++i, bits >>= 1)
-      if (bits & 1u) p.law_params[i] *= share;
-    return p;
-  }
 
   void select_plane_nodes() {
     plane_nodes_.clear();
@@ -909,6 +904,7 @@ class RoomContact {
   static long long key(int a, int b) { return (static_cast<long long>(a) << 32) | static_cast<unsigned>(b); }
 
   std::shared_ptr<const ContactLawKernel> law_;
+  unsigned per_node_mask_ = 0;  // the law's per_node parameters (ContactParams::per_node_mask)
   std::vector<BodyContact> bodies_;
   std::vector<RigidPlane> planes_;
   std::vector<MeshObstacle> obstacles_;

@@ -59,35 +59,31 @@ inline ItemParams parse_item_params(const ObjectReader& r, const ItemKindEntry& 
   return p;
 }
 
-// The override keys of one pair kind: the shared keys and the law's own (floor-only keys on the floor);
-// a key the law does not declare is an error naming the key and the law.
+// The override keys of one pair kind: those the law declares (floor-only keys on the floor); a key the law
+// does not declare, or sets from each item itself (and why), is an error naming the key and the law; a
+// value out of range names the range, the value and the law.
 inline ContactOverrides parse_contact_overrides(const ObjectReader& r, ContactLawKind kind, bool is_floor) {
   const SceneLawInfo& law = scene_law(kind);
-  ContactOverrides o;
+  const std::string of_law = "contact law \"" + std::string(law.name) + "\"";
   std::vector<std::string_view> allowed;
-  for (const auto& p : contact_parameters)
-    if (is_floor || !p.floor_only) allowed.push_back(p.key);
-  for (const auto& p : law.own_parameters)
-    if (is_floor || !p.floor_only) allowed.push_back(p.key);
-  // Another registered law's own key: not this law's (allow_only would call it unknown).
+  for (const auto& p : law.parameters)  // a key setting two fields is declared twice, allowed once
+    if ((is_floor || !p.floor_only) && std::find(allowed.begin(), allowed.end(), p.key) == allowed.end())
+      allowed.push_back(p.key);
+  for (std::string_view key : law.rule_parameters)
+    if (r.has(key)) r.fail(r.path(key), "not used by the " + of_law + ": " + std::string(law.rule_parameters_why));
+  // Another registered law's key: not this law's (allow_only would call it unknown).
   for (const auto& other : contact_law_registry().laws())
-    for (const auto& p : other.own_parameters)
-      if (r.has(p.key) && !law.reads(p.key))
-        r.fail(r.path(p.key), "not used by the contact law \"" + std::string(law.name) + "\"");
-  r.allow_only(allowed, "contact parameter of the contact law \"" + std::string(law.name) + "\"");
-  for (const auto& p : contact_parameters) {
-    if (!r.has(p.key)) continue;
-    if (!law.reads(p.key)) r.fail(r.path(p.key), "not used by the contact law \"" + std::string(law.name) + "\"");
-    o.*(p.field) = r.optional_number(p.key);
-    read_range(r, p.key, p.lo, p.hi, p.lo_exclusive);
-  }
-  for (const auto& p : law.own_parameters) {
-    if (!r.has(p.key)) continue;
+    for (const auto& p : other.parameters)
+      if (r.has(p.key) && !law.reads(p.key)) r.fail(r.path(p.key), "not used by the " + of_law);
+  r.allow_only(allowed, "contact parameter of the " + of_law);
+  ContactOverrides o;
+  for (const auto& p : law.parameters) {
+    if (!r.has(p.key) || o.values.count(std::string(p.key))) continue;
     const double value = r.number(p.key, p.default_value);
     if (!p.accepts(value))
-      r.fail(r.path(p.key), "must lie in " + p.range_text() + " (got " + fmt(value) + ", contact law \"" +
-                                std::string(law.name) + "\")");
-    o.own[std::string(p.key)] = value;
+      r.fail(r.path(p.key), "must lie in " + p.range_text() + " (got " + ObjectReader::brief(r.raw(p.key), 60) +
+                                "), under the " + of_law);
+    o.values[std::string(p.key)] = value;
   }
   return o;
 }

@@ -38,13 +38,6 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
   std::vector<BodyContact> out(model.num_bodies());
   const SceneLawInfo& law = scene_law(s.contact.law);
   const LawSetup setup{s, model, items};
-  const auto apply = [&](ContactParams& p, const ContactOverrides& o) {
-    for (const auto& key : contact_parameters)
-      if (o.*(key.field)) key.apply(p, *(o.*(key.field)));
-    for (std::size_t i = 0; i < law.own_parameters.size(); ++i)
-      if (const auto given = o.own.find(std::string(law.own_parameters[i].key)); given != o.own.end())
-        p.law_params[i] = given->second;
-  };
   // Floor and wall contact inside the implicit step where the scene asks for it; friction sticks only
   // there (a stick spring applied explicitly would be unstable). Two rigid implicit items also have
   // their pairs inside the step (solved together); every other pair is explicit.
@@ -70,10 +63,7 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
     base.k_hc = base.k_lin / std::sqrt(0.025);
     base.hc_damping = 0.5;
     base.k_t = base.k_lin;
-    for (std::size_t i = 0; i < law.own_parameters.size(); ++i) {
-      base.law_params[i] = law.own_parameters[i].default_value;
-      if (law.own_parameters[i].per_node) base.law_params_per_node |= 1u << i;
-    }
+    law.set_slot_defaults(base);
     law.item_base(base, setup, it);
     bc.floor = base;
     bc.floor.mu = c.mu_floor_long;
@@ -84,9 +74,9 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
     bc.item = base;
     bc.item.mu = bc.item.mu_long = bc.item.mu_short = c.mu_item;
     law.item_pair(bc.item, setup);
-    apply(bc.floor, s.contact.floor);
-    apply(bc.wall, s.contact.wall);
-    apply(bc.item, s.contact.item);
+    law.apply(bc.floor, s.contact.floor);
+    law.apply(bc.wall, s.contact.wall);
+    law.apply(bc.item, s.contact.item);
     bc.long_axis_node_a = it.long_axis_nodes[0];
     bc.long_axis_node_b = it.long_axis_nodes[1];
     bc.caster_nodes = it.caster_nodes;

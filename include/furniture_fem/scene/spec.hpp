@@ -157,13 +157,11 @@ struct ContactLawKind {
   friend constexpr bool operator==(ContactLawKind, ContactLawKind) = default;
 };
 
-// Overrides of the contact parameters for one kind of pair (floor, wall or item-item). Unset values
-// come from each item's ItemContact (Table 4 or the 0.8 rule).
+// Overrides of the contact parameters for one kind of pair (floor, wall or item-item): key -> value, the
+// keys the law declares (LawParameter: its parts' and its own; docs/scene/scene_file.md's key table),
+// in their scene units. Unset values come from each item's ItemContact (Table 4 or the 0.8 rule).
 struct ContactOverrides {
-  std::optional<double> alpha_kgf, dc_kgf, q, mu, mu_long, mu_short;  // paper laws
-  std::optional<double> stiffness, damping;                          // N/m, N s/m
-  // The law's own parameters given (LawParameter, scene/laws/law_record.hpp), by key.
-  std::map<std::string, double> own;
+  std::map<std::string, double> values;
 };
 
 // Which items have their floor and wall contact inside the implicit step (docs/contact/implicit_contact.md):

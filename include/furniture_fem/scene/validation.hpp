@@ -143,12 +143,14 @@ inline void validate(const SceneSpec& s) {
   if (s.contact.law.index >= contact_law_registry().size())
     fail("contact.law", "unknown contact law; expected one of: " + contact_law_registry().names());
   const SceneLawInfo& law = scene_law(s.contact.law);
-  // The law's own parameters given in code: declared by it, where they may stand, in range.
+  // The overrides given in code: declared by the law, where they may stand, in range (as the reader checks).
   for (auto [where, o] : {std::pair{"floor", &s.contact.floor}, std::pair{"wall", &s.contact.wall},
                           std::pair{"item", &s.contact.item}})
-    for (const auto& [key, value] : o->own) {
+    for (const auto& [key, value] : o->values) {
       const std::string path = std::string("contact.") + where + "." + key;
-      const LawParameter* p = law.own_parameter(key);
+      if (law.set_by_rule(key))
+        fail(path, "not used by the contact law \"" + std::string(law.name) + "\": " + std::string(law.rule_parameters_why));
+      const LawParameter* p = law.parameter(key);
       if (!p) fail(path, "not used by the contact law \"" + std::string(law.name) + "\"");
       if (p->floor_only && std::string_view(where) != "floor") fail(path, "only contact.floor takes it");
       if (!p->accepts(value))

@@ -359,7 +359,7 @@ inline ContactForce RoomContact::hull_contact_force(const ContactView& view, con
   const NodeOnPlane node{pa, point_velocity(view, c.node_a, arm_a), c.L, view.dt, Vec3::Zero(),
                          point_velocity(view, c.node_b, arm_b)};
   ContactParams prm = ContactParams::pair(bodies_[c.body_a].item, bodies_[c.body_b].item);
-  if (c.share != 1.0) prm = scaled_penalty(prm, c.share);
+  if (c.share != 1.0) prm.scale_per_node(c.share, per_node_mask_);
   return detail::node_force(*law_, node, gap + c.L, n, prm, state);
 }
 

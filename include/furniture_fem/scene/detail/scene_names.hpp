@@ -83,9 +83,7 @@ inline json points_to_json(const std::vector<std::pair<double, double>>& pts) {
 
 inline json overrides_to_json(const ContactOverrides& o) {
   json j = json::object();
-  for (const auto& p : contact_parameters)
-    if (o.*(p.field)) j[std::string(p.key)] = *(o.*(p.field));
-  for (const auto& [key, value] : o.own) j[key] = value;
+  for (const auto& [key, value] : o.values) j[key] = value;
   return j;
 }
 

@@ -1,7 +1,6 @@
 #pragma once
 // furniture_fem/scene/laws/hunt_crossley.hpp: the scene law "hunt_crossley", a Hertz spring whose damping
 // grows with the overlap, with regularised Coulomb friction.
-#include <array>
 #include <string_view>
 
 #include "law_record.hpp"
@@ -11,7 +10,6 @@ namespace furniture_fem {
 struct HuntCrossleySceneLaw : SceneLawDefaults {
   static constexpr std::string_view name = "hunt_crossley";
   using law = HuntCrossleyLaw;
-  static constexpr std::array<std::string_view, 3> parameters{"mu", "mu_long", "stiffness"};
 };
 
 }  // namespace furniture_fem

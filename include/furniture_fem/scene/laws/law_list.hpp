@@ -10,7 +10,9 @@
 //   contact_law_registry()            the registry scenes are read and run against
 //   register_contact_law<R>()         makes a program's own record nameable in scene files and studies
 //   scene_law(kind)                   what the reader, writer, validation and set-up need of a law
-//   contact_law_table()               the override keys by law, as the table of docs/scene/scene_file.md
+//   contact_law_table()               the override keys by law, as the table of docs/scene/scene_file.md,
+//                                     generated from the laws' parts' declarations (LawParameter)
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <deque>
@@ -54,8 +56,12 @@ inline constexpr ContactLawKind law_kind{detail::index_in<R>(builtin_contact_law
 // A record's statements as values, and its law's kernel: what the code that reads a law at run time needs.
 struct SceneLawInfo {
   std::string_view name;
-  std::span<const std::string_view> parameters;  // the shared keys it reads (contact_parameters)
-  std::span<const LawParameter> own_parameters;  // its own, in ContactParams::law_params
+  // Its scene keys, in the order they are applied: its parts' declarations (the kernel's, less the rule
+  // keys) and then the record's own (in the slots after its parts', in their order). A key may stand more
+  // than once (it then sets each field).
+  std::vector<LawParameter> parameters;
+  std::span<const std::string_view> rule_parameters;  // its parts' keys its item_base sets, and why
+  std::string_view rule_parameters_why;
   std::string_view own_stick_spring;
   std::optional<ImplicitContact> default_implicit;
   std::span<const std::string_view> unused_item_parameters;
@@ -66,21 +72,54 @@ struct SceneLawInfo {
 
   template <SceneContactLaw R>
   static SceneLawInfo of() {
-    return {R::name,           R::parameters,       R::own_parameters,           R::own_stick_spring,
-            R::default_implicit, R::unused_item_parameters, R::unused_item_parameters_why,
-            &R::item_base,     &R::item_pair,       make_contact_law_kernel<typename R::law>()};
+    SceneLawInfo info{R::name,           {},
+                      R::rule_parameters, R::rule_parameters_why,
+                      R::own_stick_spring, R::default_implicit,
+                      R::unused_item_parameters, R::unused_item_parameters_why,
+                      &R::item_base,     &R::item_pair,
+                      make_contact_law_kernel<typename R::law>()};
+    std::size_t first_own_slot = 0;  // past the slots its parts declare
+    for (const LawParameter& p : info.kernel->parameters()) {
+      if (!info.set_by_rule(p.key)) info.parameters.push_back(p);
+      if (!p.field) first_own_slot = std::max(first_own_slot, p.slot + 1);
+    }
+    if (first_own_slot + R::own_parameters.size() > ContactParams::max_law_params)
+      throw ModelError("contact law \"" + std::string(R::name) + "\" declares more than " +
+                       std::to_string(ContactParams::max_law_params) + " parameters of its own (ContactParams::law_params)");
+    for (std::size_t i = 0; i < R::own_parameters.size(); ++i) {
+      LawParameter own = R::own_parameters[i];
+      own.slot = first_own_slot + i;
+      info.parameters.push_back(own);
+    }
+    return info;
   }
-  // The law's own parameter `key`, or null.
-  const LawParameter* own_parameter(std::string_view key) const {
-    for (const auto& p : own_parameters)
+  // The first declaration of scene key `key` (all of a key's agree on its unit, range and place), or null.
+  const LawParameter* parameter(std::string_view key) const {
+    for (const auto& p : parameters)
       if (p.key == key) return &p;
     return nullptr;
   }
-  // Whether the law reads override key `key` (shared or its own).
-  bool reads(std::string_view key) const {
-    for (auto k : parameters)
+  // Whether the law reads scene key `key`.
+  bool reads(std::string_view key) const { return parameter(key) != nullptr; }
+  // Whether `key` is one of its parts' that its item_base sets from the item.
+  bool set_by_rule(std::string_view key) const {
+    for (auto k : rule_parameters)
       if (k == key) return true;
-    return own_parameter(key) != nullptr;
+    return false;
+  }
+  // The given overrides, in declaration order (mu before mu_long before mu_short: each narrows the one
+  // before), into an item's parameters.
+  void apply(ContactParams& p, const ContactOverrides& given) const {
+    for (const auto& d : parameters)
+      if (const auto it = given.values.find(std::string(d.key)); it != given.values.end()) p.set(d, it->second);
+  }
+  // An item's start for the law's own slots: their defaults, and which scale with the node share.
+  void set_slot_defaults(ContactParams& p) const {
+    for (const auto& d : parameters) {
+      if (d.field) continue;
+      p.law_params[d.slot] = d.default_value;
+      if (d.per_node) p.law_params_per_node |= 1u << d.slot;
+    }
   }
 };
 
@@ -176,8 +215,9 @@ std::string law_name_list(Keep&& keep) {
   return out;
 }
 
-// The override keys and the laws that read them, as markdown: the shared keys, then each law's own
-// (docs/scene/scene_file.md holds the built-in laws' table; tests/scene checks that the page holds it).
+// The override keys and the laws that read them, as markdown, one row per key in the order the laws
+// declare them, its meanings those of its declarations (docs/scene/scene_file.md holds the built-in laws'
+// table; tests/scene checks that the page holds it).
 inline std::string contact_law_table(const ContactLawRegistry& registry = builtin_contact_law_registry()) {
   // Appended piece by piece: GCC 12 warns on + chains of strings here (-Wrestrict, a false alarm).
   std::string head = "| key | unit | range |", rule = "|---|---|---|";
@@ -187,15 +227,27 @@ inline std::string contact_law_table(const ContactLawRegistry& registry = builti
   }
   std::string md = head;
   md.append(" meaning |\n").append(rule).append("---|\n");
-  const auto row = [&](std::string_view key, std::string_view unit, const std::string& range, std::string_view meaning) {
-    md.append("| `").append(key).append("` | ").append(unit).append(" | ").append(range).append(" |");
-    for (const auto& law : registry.laws()) md.append(law.reads(key) ? " yes |" : " |");
-    md.append(" ").append(meaning).append(" |\n");
-  };
-  for (const auto& p : contact_parameters)
-    row(p.key, p.unit, detail::range_text(p.lo, p.hi, p.lo_exclusive), p.meaning);
+  std::vector<std::string_view> keys;
   for (const auto& law : registry.laws())
-    for (const auto& p : law.own_parameters) row(p.key, p.unit, p.range_text(), p.meaning);
+    for (const auto& p : law.parameters)
+      if (std::find(keys.begin(), keys.end(), p.key) == keys.end()) keys.push_back(p.key);
+  for (std::string_view key : keys) {
+    const LawParameter* first = nullptr;
+    std::vector<std::string_view> meanings;
+    std::string marks;
+    for (const auto& law : registry.laws()) {
+      marks.append(law.reads(key) ? " yes |" : " |");
+      for (const auto& p : law.parameters) {
+        if (p.key != key) continue;
+        if (!first) first = &p;
+        if (std::find(meanings.begin(), meanings.end(), p.meaning) == meanings.end()) meanings.push_back(p.meaning);
+      }
+    }
+    md.append("| `").append(key).append("` | ").append(first->unit).append(" | ").append(first->range_text());
+    md.append(" |").append(marks).append(" ");
+    for (std::size_t i = 0; i < meanings.size(); ++i) md.append(i ? "; " : "").append(meanings[i]);
+    md.append(" |\n");
+  }
   return md;
 }
 

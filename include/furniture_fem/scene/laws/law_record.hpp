@@ -4,8 +4,8 @@
 // validation, the per-item set-up and the run dispatch are generated from that list
 // (docs/contact/contact.md, "Adding a contact law").
 //
-//   ContactParameter, contact_parameters   the override keys the built-in laws share
-//   LawParameter                            a parameter a law declares of its own (ContactParams::law_params)
+//   LawParameter                            a parameter, as a law's part declares it (contact/law_parameter.hpp);
+//                                           a record may declare more of its own (ContactParams::law_params)
 //   SceneLawDefaults                        what a record inherits unless it says otherwise
 //   LawList<R...>                           a list of records
 #include <array>
@@ -18,82 +18,11 @@
 #include <tuple>
 #include <vector>
 
+#include "../../contact/contact_law_kernel.hpp"
 #include "../../contact/contact_laws.hpp"
 #include "../spec.hpp"
 
 namespace furniture_fem {
-
-// An override key of contact.floor / wall / item: its range, where it may stand, the ContactOverrides
-// field that holds it and what it sets in ContactParams. A law reads the keys it declares.
-struct ContactParameter {
-  std::string_view key, unit;
-  double lo, hi;
-  bool lo_exclusive;
-  bool floor_only;
-  std::optional<double> ContactOverrides::*field;
-  void (*apply)(ContactParams&, double);
-  std::string_view meaning;
-};
-
-// In the order they are applied: mu before mu_long before mu_short (each narrows the one before).
-inline constexpr std::array<ContactParameter, 8> contact_parameters{{
-    {"alpha_kgf", "kgf", 0.0, 1e6, true, false, &ContactOverrides::alpha_kgf,
-     [](ContactParams& p, double v) { p.alpha = v * ContactParams::newtons_per_kgf; }, "penalty coefficient"},
-    {"dc_kgf", "kgf", 0.0, 1e6, false, false, &ContactOverrides::dc_kgf,
-     [](ContactParams& p, double v) { p.Dc = v * ContactParams::newtons_per_kgf; }, "damping coefficient"},
-    {"q", "-", 0.0, 10.0, true, false, &ContactOverrides::q, [](ContactParams& p, double v) { p.q = v; },
-     "penalty index"},
-    {"mu", "-", 0.0, 5.0, false, false, &ContactOverrides::mu,
-     [](ContactParams& p, double v) { p.mu = p.mu_long = p.mu_short = v; }, "dynamic friction"},
-    {"mu_long", "-", 0.0, 5.0, false, true, &ContactOverrides::mu_long,
-     [](ContactParams& p, double v) { p.mu = p.mu_long = v; },
-     "`floor` only: along the longer edge (the isotropic laws' floor mu)"},
-    {"mu_short", "-", 0.0, 5.0, false, true, &ContactOverrides::mu_short,
-     [](ContactParams& p, double v) { p.mu_short = v; }, "`floor` only: along the shorter edge"},
-    // One key for every spring: Hunt-Crossley's at the linear spring's stiffness at 25 mm of overlap.
-    {"stiffness", "N/m", 0.0, 1e12, true, false, &ContactOverrides::stiffness,
-     [](ContactParams& p, double v) {
-       p.k_lin = p.k_t = v;
-       p.k_hc = v / std::sqrt(0.025);
-     },
-     "the linear spring; stick_slip's tangential spring k_t; hunt_crossley's k_hc = stiffness / sqrt(0.025 m) "
-     "(the same onset stiffness)"},
-    {"damping", "N s/m", 0.0, 1e12, false, false, &ContactOverrides::damping,
-     [](ContactParams& p, double v) { p.c_lin = p.c_t = v; }, "the normal dashpot; stick_slip's tangential dashpot c_t"},
-}};
-
-inline const ContactParameter* find_contact_parameter(std::string_view key) {
-  for (const auto& p : contact_parameters)
-    if (p.key == key) return &p;
-  return nullptr;
-}
-
-namespace detail {
-// "(lo, hi]" or "[lo, hi]", appended piece by piece: GCC 12 warns on a + chain of strings here
-// (-Wrestrict, a false alarm).
-inline std::string range_text(double lo, double hi, bool lo_exclusive) {
-  std::string text(lo_exclusive ? "(" : "[");
-  return text.append(fmt(lo)).append(", ").append(fmt(hi)).append("]");
-}
-}  // namespace detail
-
-// A parameter a law declares of its own, beyond the shared keys above: a key of contact.floor / wall /
-// item, read by the law's force from ContactParams::law_params[slot], slot its place in the record's
-// own_parameters. Every item starts from default_value (the record's item_base may set it from the item);
-// two items in contact take the mean of their values (ContactParams::pair); a per_node value is scaled
-// with a contact's share of nodes (a rigid item's support point standing for n nodes takes n times it).
-struct LawParameter {
-  std::string_view key, unit;
-  double lo = 0, hi = 0;  // accepted range, both ends included unless lo_exclusive
-  bool lo_exclusive = false;
-  double default_value = 0;
-  std::string_view meaning;  // one line, for the docs table
-  bool per_node = false;     // a force coefficient (N, N/m^k, N s/m ...): scaled with the node share
-  bool floor_only = false;   // only contact.floor takes it
-
-  std::string range_text() const { return detail::range_text(lo, hi, lo_exclusive); }
-  bool accepts(double v) const { return (lo_exclusive ? v > lo : v >= lo) && v <= hi; }
-};
 
 // What the per-item set-up of a law may read (scene_body_contacts).
 struct LawSetup {
@@ -112,7 +41,12 @@ struct SceneLawDefaults {
   // Item parameters (items[i].params) the law sets itself, and why: given, they are an error.
   static constexpr std::array<std::string_view, 0> unused_item_parameters{};
   static constexpr std::string_view unused_item_parameters_why{};
-  // The law's own parameters (LawParameter), at most ContactParams::max_law_params.
+  // Keys its parts declare that its item_base sets from each item instead (the stiff rule), and why:
+  // given in a scene, they are an error.
+  static constexpr std::array<std::string_view, 0> rule_parameters{};
+  static constexpr std::string_view rule_parameters_why{};
+  // The law's own parameters beyond its parts' (LawParameter, held in ContactParams::law_params[slot], slot
+  // their place here), at most ContactParams::max_law_params.
   static constexpr std::array<LawParameter, 0> own_parameters{};
   // An item's parameters before the pair kinds get their friction, and its item-item parameters.
   static void item_base(ContactParams&, const LawSetup&, const ItemInfo&) {}
@@ -127,35 +61,33 @@ struct LawList {
 };
 
 namespace detail {
-// Whether every key a record declares is an override key (a misspelt key fails SceneContactLaw).
 template <class R>
-consteval bool declares_known_keys() {
-  for (std::string_view key : R::parameters) {
-    bool found = false;
-    for (const auto& p : contact_parameters) found = found || p.key == key;
-    if (!found) return false;
-  }
-  return true;
+consteval bool part_key(std::string_view key) {
+  for (const auto& p : contact_law_parameters<typename R::law>)
+    if (p.key == key) return true;
+  return false;
 }
-// Whether a record's own keys fit ContactParams::law_params and are neither shared keys nor repeated.
+// Whether a record's own keys fit ContactParams::law_params and are neither its parts' keys nor repeated,
+// and its rule keys are its parts'.
 template <class R>
 consteval bool declares_distinct_own_keys() {
   if (R::own_parameters.size() > ContactParams::max_law_params) return false;
   for (std::size_t i = 0; i < R::own_parameters.size(); ++i) {
-    for (const auto& p : contact_parameters)
-      if (p.key == R::own_parameters[i].key) return false;
+    if (part_key<R>(R::own_parameters[i].key) || R::own_parameters[i].field != nullptr) return false;
     for (std::size_t j = 0; j < i; ++j)
       if (R::own_parameters[j].key == R::own_parameters[i].key) return false;
   }
+  for (std::string_view key : R::rule_parameters)
+    if (!part_key<R>(key)) return false;
   return true;
 }
 }  // namespace detail
 
-// A scene contact law: a name, a ContactLaw, the shared keys it reads and its own parameters.
+// A scene contact law: a name, a ContactLaw (its parts declare the keys it reads) and its own parameters.
+// A hand-kept key list (`parameters`, before issue 48's declarations) is refused: the parts say it.
 template <class R>
 concept SceneContactLaw = std::derived_from<R, SceneLawDefaults> && ContactLawPolicy<typename R::law> && requires {
   { R::name } -> std::convertible_to<std::string_view>;
-  { R::parameters.size() } -> std::convertible_to<std::size_t>;
-} && detail::declares_known_keys<R>() && detail::declares_distinct_own_keys<R>();
+} && !requires { R::parameters; } && detail::declares_distinct_own_keys<R>();
 
 }  // namespace furniture_fem

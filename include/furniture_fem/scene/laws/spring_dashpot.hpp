@@ -1,7 +1,6 @@
 #pragma once
 // furniture_fem/scene/laws/spring_dashpot.hpp: the scene law "spring_dashpot", a linear spring and dashpot
 // with regularised Coulomb friction.
-#include <array>
 #include <string_view>
 
 #include "law_record.hpp"
@@ -11,7 +10,6 @@ namespace furniture_fem {
 struct SpringDashpotSceneLaw : SceneLawDefaults {
   static constexpr std::string_view name = "spring_dashpot";
   using law = SpringDashpotLaw;
-  static constexpr std::array<std::string_view, 4> parameters{"mu", "mu_long", "stiffness", "damping"};
 };
 
 }  // namespace furniture_fem

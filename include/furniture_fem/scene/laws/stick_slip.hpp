@@ -1,7 +1,6 @@
 #pragma once
 // furniture_fem/scene/laws/stick_slip.hpp: the scene law "stick_slip", the paper's normal response with
 // Coulomb friction on a tangential spring k_t and dashpot c_t (return mapping).
-#include <array>
 #include <string_view>
 
 #include "law_record.hpp"
@@ -11,8 +10,6 @@ namespace furniture_fem {
 struct StickSlipSceneLaw : SceneLawDefaults {
   static constexpr std::string_view name = "stick_slip";
   using law = StickSlipLaw;
-  static constexpr std::array<std::string_view, 7> parameters{"alpha_kgf", "dc_kgf", "q",      "mu",
-                                                              "mu_long",   "stiffness", "damping"};
   static constexpr std::string_view own_stick_spring = "its tangential spring is k_t";
 };
 

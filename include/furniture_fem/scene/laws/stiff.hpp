@@ -14,7 +14,10 @@ namespace furniture_fem {
 struct StiffSceneLaw : SceneLawDefaults {
   static constexpr std::string_view name = "stiff";
   using law = SpringDashpotLaw;
-  static constexpr std::array<std::string_view, 2> parameters{"mu", "mu_long"};
+  // Its parts' stiffness and damping come from each item (the stiff rule), not from the scene.
+  static constexpr std::array<std::string_view, 2> rule_parameters{"stiffness", "damping"};
+  static constexpr std::string_view rule_parameters_why =
+      "it sets each item's stiffness and damping from its mass and inertia (docs/contact/contact.md, \"The stiff rule\")";
   static constexpr std::array<std::string_view, 3> unused_item_parameters{"alpha_kgf", "dc_kgf", "alpha_scale"};
   static constexpr std::string_view unused_item_parameters_why =
       "it sets each item's stiffness and damping from its mass and inertia; docs/contact/contact.md";
