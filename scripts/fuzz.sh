@@ -22,7 +22,11 @@ start=$(date +%s)
 cmake -S . -B $B -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=TRUE -DFFEM_BUILD_FUZZ=ON \
       -DFFEM_BUILD_TESTS=OFF -DFFEM_BUILD_EXAMPLES=OFF -DFFEM_BUILD_BENCH=OFF >/dev/null
 # build-fuzz holds the harnesses alone: build them all (one make, two jobs), whichever run.
-cmake --build $B -j 2
+# Only the harnesses asked for (and the libraries they link): `all` would also build the compiled scene
+# and study libraries, which no harness needs.
+targets=""
+for h in $harnesses; do targets="$targets --target $h"; done
+cmake --build $B -j 2 $targets
 echo "fuzz: harnesses built in $(( $(date +%s) - start )) s"
 
 # Seeds: the corpus files of each harness's format (named <class>_<file>: names repeat across classes).
