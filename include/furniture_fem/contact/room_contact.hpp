@@ -754,7 +754,6 @@ class RoomContact {
     return group;
   }
 
-
   void select_plane_nodes() {
     plane_nodes_.clear();
     for (size_t n = 0; n < plane_node_.size(); ++n)
