@@ -42,6 +42,7 @@
 #include "contact_laws.hpp"
 #include "pair_force.hpp"
 #include "../core/simulation.hpp"
+#include "../restraints/restraint_set.hpp"
 
 #define FURNITURE_FEM_CONTACT_INTERNAL
 #include "detail/hull_pair.hpp"
@@ -128,6 +129,7 @@ class RoomContact {
     for (const auto& b : bodies_)
       for (int n : b.caster_nodes) caster_.at(n) = 1;
     plane_node_.assign(model.num_nodes(), 1);
+    restraints_of_.resize(bodies_.size());
     select_plane_nodes();
     support_.resize(bodies_.size());
     rigid_.assign(bodies_.size(), 0);
@@ -147,6 +149,10 @@ class RoomContact {
     obstacles_.push_back(std::move(obstacle));
     ++nodes_read_revision_;
   }
+  // Fastening devices (restraints/): each one's force at its node, in f and (implicit) inside the step as
+  // a floor contact's, its regime compared within the step as a contact's status. Before the first step.
+  void set_restraints(RestraintSet restraints);
+  const RestraintSet& restraints() const { return restraints_; }
 
   // A body whose nodes keep their places relative to each other (Simulation::set_rigid calls this):
   // only the vertices of its nodes' convex hull are tested against the floor and walls, those of the
@@ -211,6 +217,7 @@ class RoomContact {
       }
     for (int n : {bodies_[body].long_axis_node_a, bodies_[body].long_axis_node_b})
       if (n >= 0) out.push_back(n);
+    for (int i : restraints_of_[body]) out.push_back(restraints_[i].node);
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
     return true;
@@ -311,16 +318,26 @@ class RoomContact {
       }
       return false;
     });
+    for (int i : restraints_of_[body]) {
+      const RestraintResponse r = restraints_.response(i, view.x[restraints_[i].node]);
+      out.status.push_back(static_cast<char>(r.state.regime));
+      if (r.state.regime == RestraintRegime::idle || r.state.broken()) continue;
+      out.tangents.push_back(restraint_tangent(view, i, r));
+      out.forces.push_back(wrench(r.on_item));
+    }
     return out;
   }
   // Whether any of the body's (node, plane) statuses at the view's state differs from the last
   // add_forces' (no allocation: called for every implicit body at every step).
   bool body_plane_status_changed(const ContactView& view, int body) const {
     if (!implicit || !bodies_[body].implicit || plane_status_.empty()) return false;
-    return any_body_plane_force(view, body, [&](int n, std::size_t p, const ContactForce& cf) {
+    const bool planes_changed = any_body_plane_force(view, body, [&](int n, std::size_t p, const ContactForce& cf) {
       return status_of(cf) != plane_status_[n * planes_.size() + p];
     }, [&](const detail::SurfacePoint& pt, std::size_t p, const PointContact& pc) {
       return status_of(pc.force) != point_status_[point_index(pt) * planes_.size() + p];
+    });
+    return planes_changed || std::any_of(restraints_of_[body].begin(), restraints_of_[body].end(), [&](int i) {
+      return static_cast<char>(restraints_.response(i, view.x[restraints_[i].node]).state.regime) != restraint_status_[i];
     });
   }
   std::vector<char> last_status(const Model& model, int body) const {
@@ -333,6 +350,7 @@ class RoomContact {
         for (const auto& group : surface_groups_[body])
           for (int sp : group.points) status.push_back(point_status_[sp * planes_.size() + p]);
     }
+    for (int i : restraints_of_[body]) status.push_back(restraint_status_[i]);
     return status;
   }
 
@@ -341,44 +359,11 @@ class RoomContact {
   // Bodies whose contact is explicit keep their predictor evaluation (forces, history, reported pairs).
   // Item-item pairs solved inside the step are evaluated again too, for their history and the
   // reported pair forces (their forces in f are not changed: the simulation carries their linearisation).
-  void end_of_step(const ContactView& view, Eigen::VectorXd& f) {
-    if (!implicit) return;
-    if (!plane_applied_.empty()) {
-      for (const auto& [n, w] : plane_applied_) f.template segment<6>(6 * n) -= w;
-      std::erase_if(pair_forces_, [&](const PairForce& pf) {
-        return (pf.body_b == floor_id || pf.body_b == wall_id) && bodies_[pf.body_a].implicit;
-      });
-      active_ -= static_cast<int>(plane_applied_.size());
-      plane_contacts(view, f, true);
-    }
-    for (const auto& ip : implicit_pairs_) {
-      const auto& A = view.model.elements()[ip.ea];
-      const auto& B = view.model.elements()[ip.eb];
-      add_pair_force(std::min(A.body, B.body), std::max(A.body, B.body), -ip.reported);
-      ContactState st = committed_pair_state(ip.ea, ip.eb);
-      const auto nf = evaluate_segment_pair(*law_, segment_pair(view, ip.ea, ip.eb), pair_params(view.model, ip.ea, ip.eb), st);
-      if (pair_history_) {
-        if (nf.in_contact) pair_trial_.set(key(ip.ea, ip.eb), st);
-        else pair_trial_.erase(key(ip.ea, ip.eb));
-      }
-      add_pair_force(std::min(A.body, B.body), std::max(A.body, B.body), reported_pair_force(A.body, B.body, nf));
-    }
-    for (auto& hc : hull_contacts_) {
-      if (!hc.implicit) continue;
-      add_pair_force(std::min(hc.body_a, hc.body_b), std::max(hc.body_a, hc.body_b), -hc.reported);
-      ContactState st = committed_hull_state(hc);
-      const ContactForce cf = hull_contact_force(view, hc, st);
-      if (pair_history_ && hc.key >= 0) {
-        if (cf.in_contact) pair_trial_.set(hc.key, st);
-        else pair_trial_.erase(hc.key);
-      }
-      hc.reported = hc.body_a < hc.body_b ? cf.on_a : Vec3(-cf.on_a);
-      add_pair_force(std::min(hc.body_a, hc.body_b), std::max(hc.body_a, hc.body_b), hc.reported);
-    }
-  }
+  void end_of_step(const ContactView& view, Eigen::VectorXd& f);
 
   void commit() {
     ++steps_;
+    restraints_.commit(evaluated_at_);
     // No copy back into node_trial_: add_forces overwrites every entry of it (reset out of contact,
     // the committed state in contact) before the law reads it.
     node_state_.swap(node_trial_);
@@ -398,6 +383,7 @@ class RoomContact {
        c.plane_status_, c.share_);
     ar(c.point_state_, c.point_trial_, c.point_status_, c.point_share_, c.group_near_, c.group_state_live_);
     ar(c.steps_, c.broad_runs_, c.active_);
+    ar(c.restraints_, c.restraint_status_, c.restraints_applied_, c.evaluated_at_);
     if constexpr (!Archive::saving) c.pair_force_index_.clear();  // of the pairs before the load
   }
 
@@ -453,6 +439,7 @@ class RoomContact {
       }
     }
     surface_point_contacts(view, f, only_implicit);
+    restraint_forces(view, f, only_implicit);
   }
 
   // Surface points against planes (set_surface): as plane_contacts, each force at its point. A flexible
@@ -837,6 +824,10 @@ class RoomContact {
   }
 
   void element_contacts(const ContactView& view, Eigen::VectorXd& f);
+  // The restraints' forces (of the implicit bodies only when only_implicit), as plane_contacts' (not
+  // counted as contacts, not reported as wall or floor forces); a restraint's slope as a contact's.
+  void restraint_forces(const ContactView& view, Eigen::VectorXd& f, bool only_implicit);
+  NodalContactTangent restraint_tangent(const ContactView& view, int i, const RestraintResponse& r) const;
 
   // The segment pair of elements ea (A) and eb (B) in the view's state; L is the mean member width.
   static SegmentPair segment_pair(const ContactView& view, int ea, int eb);
@@ -964,6 +955,11 @@ class RoomContact {
   std::vector<char> plane_history_;  // per body: its floor and wall contacts keep a history
   std::vector<Vec3> x_broad_;  // node positions at the last broad phase
   Timings timings_;
+  RestraintSet restraints_;
+  std::vector<std::vector<int>> restraints_of_;  // per body: its restraints
+  std::vector<char> restraint_status_;           // per restraint: its regime at the last evaluation
+  int restraints_applied_ = 0;                   // of plane_applied_'s entries, the restraints'
+  double evaluated_at_ = 0;                      // the last evaluation's time (a break's time at commit)
   long steps_ = 0, broad_runs_ = 0;
   int active_ = 0;
 };
@@ -973,4 +969,5 @@ class RoomContact {
 // The members defined out of the class (contact/detail/).
 #define FURNITURE_FEM_CONTACT_INTERNAL
 #include "detail/room_contact_pairs.hpp"
+#include "detail/room_restraints.hpp"
 #undef FURNITURE_FEM_CONTACT_INTERNAL

@@ -8,6 +8,42 @@
 
 namespace furniture_fem {
 
+inline void RoomContact::end_of_step(const ContactView& view, Eigen::VectorXd& f) {
+  if (!implicit) return;
+  if (!plane_applied_.empty()) {
+    for (const auto& [n, w] : plane_applied_) f.template segment<6>(6 * n) -= w;
+    std::erase_if(pair_forces_, [&](const PairForce& pf) {
+      return (pf.body_b == floor_id || pf.body_b == wall_id) && bodies_[pf.body_a].implicit;
+    });
+    active_ -= static_cast<int>(plane_applied_.size()) - restraints_applied_;  // restraints are not contacts
+    plane_contacts(view, f, true);
+  }
+  for (const auto& ip : implicit_pairs_) {
+    const auto& A = view.model.elements()[ip.ea];
+    const auto& B = view.model.elements()[ip.eb];
+    add_pair_force(std::min(A.body, B.body), std::max(A.body, B.body), -ip.reported);
+    ContactState st = committed_pair_state(ip.ea, ip.eb);
+    const auto nf = evaluate_segment_pair(*law_, segment_pair(view, ip.ea, ip.eb), pair_params(view.model, ip.ea, ip.eb), st);
+    if (pair_history_) {
+      if (nf.in_contact) pair_trial_.set(key(ip.ea, ip.eb), st);
+      else pair_trial_.erase(key(ip.ea, ip.eb));
+    }
+    add_pair_force(std::min(A.body, B.body), std::max(A.body, B.body), reported_pair_force(A.body, B.body, nf));
+  }
+  for (auto& hc : hull_contacts_) {
+    if (!hc.implicit) continue;
+    add_pair_force(std::min(hc.body_a, hc.body_b), std::max(hc.body_a, hc.body_b), -hc.reported);
+    ContactState st = committed_hull_state(hc);
+    const ContactForce cf = hull_contact_force(view, hc, st);
+    if (pair_history_ && hc.key >= 0) {
+      if (cf.in_contact) pair_trial_.set(hc.key, st);
+      else pair_trial_.erase(hc.key);
+    }
+    hc.reported = hc.body_a < hc.body_b ? cf.on_a : Vec3(-cf.on_a);
+    add_pair_force(std::min(hc.body_a, hc.body_b), std::max(hc.body_a, hc.body_b), hc.reported);
+  }
+}
+
 inline void RoomContact::element_contacts(const ContactView& view, Eigen::VectorXd& f) {
   const Model& model = view.model;
   bool rerun = x_broad_.size() != view.x.size();
