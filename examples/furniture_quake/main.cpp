@@ -185,6 +185,14 @@ int report(const SceneSpec& spec, const RunSummary& s) {
   for (const auto& it : s.items)
     std::printf("  %-28s %-16s slide %.3f m  tilt %5.1f deg (max %5.1f)%s%s\n", it.name.c_str(), it.state.c_str(),
                 it.slide, it.tilt_deg, it.max_tilt_deg, it.resting_on.empty() ? "" : "  on ", it.resting_on.c_str());
+  for (const auto& r : s.restraints) {
+    std::printf("  restraint %-18s %-9s on %-18s peak %7.1f N, %.2f of its %.0f N", r.name.c_str(), r.kind.c_str(),
+                r.item.c_str(), r.peak_force, r.peak_ratio, r.strength);
+    if (r.broke)
+      std::printf(": BROKE at %.3f s (%s)\n", r.broke_at, r.failure.c_str());
+    else
+      std::printf(": held\n");
+  }
   std::printf("  results in %s\n", s.out_dir.c_str());
   // A stopped run is not a complete one: scripts see 130 (the shell's code for Ctrl-C).
   if (s.status == "stopped") return exit_interrupted;

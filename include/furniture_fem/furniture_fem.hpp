@@ -2,6 +2,7 @@
 // furniture_fem/furniture_fem.hpp: everything.
 #include "core.hpp"
 #include "odeint.hpp"
+#include "restraints.hpp"
 #include "contact.hpp"
 #include "excitation.hpp"
 #include "furniture.hpp"

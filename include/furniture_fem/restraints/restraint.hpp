@@ -177,7 +177,7 @@ struct RestraintState {
   static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp: doubles and Vec3s, then chars
   double plastic = 0;          // m: bracket plastic pull; pole shortening (lock slip and board crush)
   double work = 0;             // J: the work it has done on the item, trapezoidal over committed steps
-  double peak_force = 0;       // N: the largest |force| it has carried
+  double peak_force = 0;       // N: the largest force it has carried in the sense that fails it (a bracket's pull)
   double broke_at = -1;        // s: when it broke (committed); -1: intact
   double force = 0;            // N: its force now (tension or compression, signed as its kind says)
   double extension = 0;        // m: its deformation now (pull, stretch, shear, compression)
@@ -361,7 +361,7 @@ inline RestraintResponse restraint_response(const Restraint& r, const RestraintS
 // The state a restraint starts from at its rest position (the pole's preload already on).
 inline RestraintState initial_restraint_state(const Restraint& r) {
   RestraintState s = restraint_response(r, RestraintState{}, r.rest).state;
-  s.peak_force = std::abs(s.force);
+  s.peak_force = std::max(0.0, s.force);
   return s;
 }
 

@@ -51,7 +51,7 @@ class RestraintSet {
       RestraintState& now = trial_[i];
       const RestraintState& before = committed_[i];
       now.work = before.work + 0.5 * (before.on_item + now.on_item).dot(now.x - before.x);
-      now.peak_force = std::max(before.peak_force, std::abs(now.force));
+      now.peak_force = std::max(before.peak_force, now.force);  // pushing (a bent bracket bearing) is not loading
       if (now.broken() && !before.broken()) now.broke_at = t;
     }
     committed_ = trial_;

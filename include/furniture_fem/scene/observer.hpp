@@ -28,6 +28,7 @@
 #include "../core/step_report.hpp"
 #include "../excitation/excitation.hpp"
 #include "../furniture/furniture.hpp"
+#include "../restraints/restraint_set.hpp"
 #include "run_summary.hpp"
 #include "spec.hpp"
 
@@ -51,6 +52,7 @@ class SimulationView {
   // Contact force on body_a from body_b, summed per pair, in the last contact evaluation (body_b -1:
   // the floor, -2: a wall).
   virtual const std::vector<PairForce>& pair_forces() const = 0;
+  virtual const RestraintSet& restraints() const = 0;  // the room's restraints and their committed states
   virtual long factorizations() const = 0;
   virtual double factor_reuse_error() const = 0;  // Simulation::factor_reuse_error
   // Refactorisations for a member's frame drift, and the largest drift a reused factorisation solved

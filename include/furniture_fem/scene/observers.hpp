@@ -10,6 +10,8 @@
 //   EnergyHistory          energy.csv                                    files
 //   ContactForceHistory    contact_forces.csv (contact_pairs.csv)        files (contact_force_history.hpp)
 //   InputMotionHistory     input_motion.csv                              files
+//   RestraintOutcomes      each restraint's peak and break -> RunSummary::restraints   restraints
+//   RestraintHistory       restraints.csv, restraints.png                files, restraints (restraint_observers.hpp)
 //   VtuSeries              room.pvd, vtu/room_<step>.vtu                 files, outputs.vtu_every > 0
 //   FinalStateFile         final_state.json                              files
 //   SummaryFile            summary.json                                  files
@@ -41,6 +43,8 @@
 #include "../io/vtk.hpp"
 #include "contact_force_history.hpp"
 #include "observer.hpp"
+#include "restraint_observers.hpp"
+#include "row_history.hpp"
 #include "writer.hpp"
 
 #define FURNITURE_FEM_SCENE_INTERNAL
@@ -424,41 +428,6 @@ class EnergyCheck : public RunObserver {
   EnergyVerdict v_;
 };
 
-// A CSV history written at the history rows: derived observers give the columns and each row.
-class RowHistory : public RunObserver {
- public:
-  void begin(const RunView& run) override {
-    csv_.emplace(run.out_dir + "/" + file(), columns(run));
-    write_row(run);
-  }
-  void after_step(const RunView& run, const StepInfo&) override {
-    if (run.row_due()) write_row(run);
-  }
-  void end(const RunView&, RunSummary&) override { csv_->flush(); }
-  void save(StateWriter& w) override {
-    w(csv_->position());
-    save_rows(w);
-  }
-  void resume(const RunView& run, StateReader& r) override {
-    CsvWriter::Position at;
-    r(at);
-    csv_.emplace(run.out_dir + "/" + file(), columns(run), at);
-    resume_rows(r);
-  }
-
- protected:
-  // What a history keeps from row to row, for a checkpoint.
-  virtual void save_rows(StateWriter&) {}
-  virtual void resume_rows(StateReader&) {}
-  virtual std::string file() const = 0;
-  virtual std::vector<std::string> columns(const RunView& run) const = 0;
-  virtual void write_row(const RunView& run) = 0;
-  CsvWriter& csv() { return *csv_; }
-
- private:
-  std::optional<CsvWriter> csv_;
-};
-
 // markers.csv: t, then per marker <marker>_x, _y, _z (displacement relative to the table, m) and
 // <marker>_ax, _ay, _az: the absolute acceleration (m/s^2; the table's plus the marker's relative to
 // it), as its mean over the steps since the previous row, (v(t) - v(t_prev)) / (t - t_prev) for the
@@ -668,6 +637,7 @@ class SummaryFile : public RunObserver {
          {motion.peaks().x(), motion.peaks().y(), motion.peaks().z()}},
         {"final_state", detail::final_state_json(sum.items)},
         {"sectional_force_peaks", detail::section_peaks_json(sum.section_peaks)},
+        {"restraints", detail::restraint_outcomes_json(sum.restraints)},
         {"eigen_version", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
                               std::to_string(EIGEN_MINOR_VERSION)}};
     if (ground) summary["floor_motion_peak_m_s2"] = {run.motion.peaks().x(), run.motion.peaks().y(), run.motion.peaks().z()};
@@ -847,12 +817,14 @@ inline std::vector<std::unique_ptr<RunObserver>> standard_observers(const RunVie
   list.push_back(std::make_unique<FinalStates>());
   list.push_back(std::make_unique<SectionPeaks>());
   list.push_back(std::make_unique<EnergyCheck>());
+  if (!run.spec.restraints.empty()) list.push_back(std::make_unique<RestraintOutcomes>());
   if (run.out_dir.empty()) return list;
   list.push_back(std::make_unique<MarkerHistory>());
   list.push_back(std::make_unique<SectionalForceHistory>());
   list.push_back(std::make_unique<EnergyHistory>());
   list.push_back(std::make_unique<ContactForceHistory>());
   list.push_back(std::make_unique<InputMotionHistory>());
+  if (!run.spec.restraints.empty()) list.push_back(std::make_unique<RestraintHistory>());
   if (run.spec.outputs.vtu_every > 0) list.push_back(std::make_unique<VtuSeries>());
   list.push_back(std::make_unique<FinalStateFile>());
   list.push_back(std::make_unique<SummaryFile>());

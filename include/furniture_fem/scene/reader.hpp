@@ -28,6 +28,7 @@
 #include "detail/scene_building.hpp"
 #include "detail/scene_json.hpp"
 #include "detail/scene_names.hpp"
+#include "detail/scene_restraints.hpp"
 #undef FURNITURE_FEM_SCENE_INTERNAL
 
 namespace furniture_fem {
@@ -264,7 +265,7 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
   SceneSpec s;
   s.source = source;
   const ObjectReader r(j, "", source);
-  r.allow_only({"name", "table", "walls", "obstacles", "items", "ground_motion", "contact", "integrator", "solver",
+  r.allow_only({"name", "table", "walls", "obstacles", "items", "restraints", "ground_motion", "contact", "integrator", "solver",
                 "refresh_every", "duration", "dt", "allow_coarse_dt", "outputs"});
   s.name = r.string("name", s.name);
 
@@ -397,6 +398,11 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
   if (r.has("dt"))
     if (const std::string why = step_length_problem(s.dt, SceneSpec::min_dt); !why.empty()) r.fail(r.path("dt"), why);
   if (r.has("dt")) r.require(s.dt <= s.duration, "dt", "must not exceed duration (" + detail::fmt(s.duration) + " s)");
+  r.array("restraints", [&](const nlohmann::json& v, const std::string& path) {
+    s.restraints.push_back(detail::read_restraint(v, path, source, s.restraints.size()));
+    if (const auto problem = detail::restraint_problem(s.restraints.back(), s))
+      r.fail(path + "." + problem->first, problem->second);
+  });
   s.allow_coarse_dt = r.boolean("allow_coarse_dt", s.allow_coarse_dt);
 
   if (r.has("outputs")) {

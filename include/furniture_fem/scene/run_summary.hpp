@@ -130,6 +130,20 @@ struct SettledStart {
   bool interrupted = false;
 };
 
+// What a restraint did over the run (scene/restraint_observers.hpp; docs/restraints/restraints.md).
+struct RestraintOutcome {
+  std::string name, kind, item;
+  double peak_force = 0;   // N: the largest force it carried (its kind's measure: restraints.csv's _force)
+  double strength = 0;     // N: the strength its failure is judged by (bracket pull-out, strap tension,
+                           // mat peel, pole: the lower of its lock's and the board's)
+  double peak_ratio = 0;   // peak_force / strength
+  bool broke = false;
+  double broke_at = -1;    // s
+  std::string failure;     // none, pull_out, shear, tension, peel, uplift, punch_through
+  double dissipated = 0;   // J: yielding, slipping, breaking
+  double stored = 0;       // J: elastic energy it holds at the end
+};
+
 struct RunSummary {
   std::string status = "completed";  // completed, stopped, diverged
   std::string diagnosis;             // why it stopped; for a completed run, empty or an energy-loss warning
@@ -155,6 +169,7 @@ struct RunSummary {
   int elements = 0, nodes = 0, bodies = 0;
   std::vector<ItemFinalState> items;
   std::vector<SectionForcePeak> section_peaks;  // one per outputs.sectional_forces request
+  std::vector<RestraintOutcome> restraints;     // one per restraint, in the scene's order
   EnergyVerdict energy;                         // the energy ledger's verdict
   std::string out_dir;  // empty when the run wrote no files (write_files false, or stopped before it was built)
   // The factor ground_motion.scale_to applied to the record (1 without a target); `level` multiplies after.

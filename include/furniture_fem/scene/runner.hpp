@@ -308,6 +308,7 @@ class LastStepView final : public SimulationView {
   }
   EnergyLedger energy() const override { return energy_; }
   const std::vector<PairForce>& pair_forces() const override { return pair_forces_; }
+  const RestraintSet& restraints() const override { return sim_.restraints(); }
   long factorizations() const override { return sim_.factorizations(); }
   double factor_reuse_error() const override { return sim_.factor_reuse_error(); }
   long drift_refreshes() const override { return sim_.drift_refreshes(); }

@@ -29,6 +29,10 @@
 #include "../core/simulation.hpp"
 #include "scene_motion.hpp"
 
+#define FURNITURE_FEM_SCENE_INTERNAL
+#include "detail/scene_restraints.hpp"
+#undef FURNITURE_FEM_SCENE_INTERNAL
+
 namespace furniture_fem {
 
 // Contact parameters of each body from its item's (Table 4 or rule) values, its law's set-up (the law's
@@ -373,6 +377,7 @@ struct SceneSimulation {
     for (std::size_t i = 0; i < spec.obstacles.size(); ++i) obstacles.push_back(detail::scene_obstacle(spec, i));
     detail::check_obstacles_clear(spec, *model, items, obstacles);
     for (auto& ob : obstacles) contact.add_obstacle(std::move(ob));
+    contact.set_restraints(detail::scene_restraint_set(spec, *model, items, detail::scene_ceiling_z(spec)));
     switch (spec.integrator.scheme) {
       case IntegratorKind::paper_newmark: integrator = RuntimeIntegrator::from(Newmark::paper()); break;
       case IntegratorKind::average_acceleration:

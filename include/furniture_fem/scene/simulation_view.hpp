@@ -55,6 +55,7 @@ class SimulationViewOf final : public SteppedSimulation {
   SectionForces section_forces(int e) const override { return sim_.section_forces(e); }
   EnergyLedger energy() const override { return sim_.energy(); }
   const std::vector<PairForce>& pair_forces() const override { return sim_.contact_model().pair_forces(); }
+  const RestraintSet& restraints() const override { return sim_.contact_model().restraints(); }
   long factorizations() const override { return sim_.factorizations(); }
   double factor_reuse_error() const override { return sim_.factor_reuse_error(); }
   long drift_refreshes() const override { return sim_.drift_refreshes(); }

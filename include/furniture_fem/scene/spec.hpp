@@ -15,6 +15,7 @@
 
 #include "../core/model.hpp"
 #include "../furniture/furniture.hpp"
+#include "../restraints/restraint.hpp"
 
 namespace furniture_fem {
 
@@ -79,6 +80,21 @@ struct ItemSpec {
   double yaw_deg = 0;   // counter-clockwise seen from above; 0: width along X, front towards -Y
   Fidelity fidelity = Fidelity::full;
   ItemParams params;
+};
+
+// A fastening device (docs/restraints/restraints.md): `kind` between the named point `point` of the body
+// `item` (furniture/named_points.hpp; an item's name, or "<item>/upper" and "<item>/lower") and its
+// anchor: an l_bracket or a strap on the wall `wall` at `height` above the floor (none: the point's
+// height), a mat on the floor under the point, a pole against the ceiling above it. `values`: the kind's
+// parameters the file gives (key -> value, SI; the others take the kind's defaults).
+struct RestraintSpec {
+  std::string name;
+  RestraintKind kind = RestraintKind::l_bracket;
+  std::string item, point;
+  std::string wall;               // l_bracket and strap
+  std::optional<double> height;   // m above the floor; l_bracket and strap
+  ScrewBase screws = ScrewBase::stud;  // l_bracket: what its screws go into (sets its strengths' defaults)
+  std::map<std::string, double> values;
 };
 
 enum class MotionSource { synthetic, file, points };
@@ -283,6 +299,7 @@ struct SceneSpec {
   std::vector<WallSpec> walls = default_walls();
   std::vector<ObstacleSpec> obstacles;
   std::vector<ItemSpec> items;
+  std::vector<RestraintSpec> restraints;
   GroundMotionSpec ground_motion;
   ContactSpec contact;
   IntegratorSpec integrator;

@@ -23,6 +23,7 @@
 
 #define FURNITURE_FEM_SCENE_INTERNAL
 #include "detail/scene_building.hpp"
+#include "detail/scene_restraints.hpp"
 #include "detail/scene_names.hpp"
 #undef FURNITURE_FEM_SCENE_INTERNAL
 
@@ -327,6 +328,17 @@ inline void validate(const SceneSpec& s) {
       fail(path + ".element", "member \"" + f.member + "\" has " + std::to_string(scratch.member(member).element_count) +
                                   " elements (got index " + std::to_string(f.element) + ")");
   }
+  std::set<std::string> restraint_names;  // a restraints.csv column each
+  for (size_t k = 0; k < s.restraints.size(); ++k) {
+    const auto& r = s.restraints[k];
+    const std::string path = "restraints[" + std::to_string(k) + "]";
+    if (const auto why = detail::name_problem(r.name); !why.empty()) fail(path + ".name", why);
+    if (!restraint_names.insert(r.name).second) fail(path + ".name", "duplicate restraint name \"" + r.name + "\"");
+    if (const auto problem = detail::restraint_problem(r, s)) fail(path + "." + problem->first, problem->second);
+  }
+  std::vector<ItemInfo> built;
+  for (const auto& [name, info] : bodies) built.push_back(info);
+  detail::scene_restraint_set(s, scratch, built, detail::scene_ceiling_z(s));  // each point, anchor and reach
 }
 
 }  // namespace furniture_fem

@@ -13,6 +13,7 @@
 
 #define FURNITURE_FEM_SCENE_INTERNAL
 #include "detail/scene_building.hpp"
+#include "detail/scene_restraints.hpp"
 #include "detail/scene_json.hpp"
 #include "detail/scene_names.hpp"
 #undef FURNITURE_FEM_SCENE_INTERNAL
@@ -97,6 +98,10 @@ inline nlohmann::json to_json(const SceneSpec& s) {
     }
     if (!params.empty()) item["params"] = params;
     j["items"].push_back(item);
+  }
+  if (!s.restraints.empty()) {  // written when there are some: scene.json without them unchanged
+    j["restraints"] = json::array();
+    for (const auto& r : s.restraints) j["restraints"].push_back(detail::restraint_json(r));
   }
   j["ground_motion"] = detail::ground_motion_json(s.ground_motion);
   json contact = {{"law", std::string(scene_law(s.contact.law).name)},
