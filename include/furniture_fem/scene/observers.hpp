@@ -803,8 +803,23 @@ class Figures : public RunObserver {
         if (model.node(n).body == it.body && run.sim.position(n).z() >= zmax - 1e-3) sum += run.sim.position(n), ++count;
       if (count > 0) w.label(sum / count, it.name, palette_color(it.body));
     }
+    draw_restraints(run, w);
     w.legend("initial position", RGB{195, 195, 195}, 1.5);
     w.save_png(run.out_dir + "/room_final.png", 1000, 800);
+  }
+  // Each restraint as a line from its anchor to its node (green), a broken one red and labelled.
+  static void draw_restraints(const RunView& run, Wireframe3D& w) {
+    const RestraintSet& ties = run.sim.restraints();
+    const RGB held{30, 150, 30}, broke{220, 30, 30};
+    bool any_broken = false;
+    for (std::size_t i = 0; i < ties.size(); ++i) {
+      const bool broken = ties.states()[i].broken();
+      any_broken = any_broken || broken;
+      w.add_segments({Segment3{ties[i].anchor, run.sim.position(ties[i].node)}}, broken ? broke : held);
+      if (broken) w.label(ties[i].anchor, ties[i].name + " broke", broke);
+    }
+    if (!ties.empty()) w.legend("restraint", held);
+    if (any_broken) w.legend("broken restraint", broke);
   }
 };
 
