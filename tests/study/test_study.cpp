@@ -565,3 +565,49 @@ TEST_CASE("a study's run record keeps a body's final state with final_state.json
 }
 
 }  // namespace study_tests
+
+namespace study_tests {
+
+TEST_CASE("a study variant with restraints records each one's outcome, and the record reads back", "[study][restraints]") {
+  // The block study's block on four mats of 6 N: at level 1.2 (0.3 g, mu 0.15 +-20 %) the mats take
+  // M (a - mu g) / 4 = 5 to 9 N each. A record says for each mat whether and when it peeled; a block
+  // whose mats all peeled slides (more than 1 cm in the 0.5 s), one whose mats held stays within their
+  // give (M (a - mu g) / (4 k) below 1 mm). The variant without restraints has none in its record.
+  json j = block_study(2);
+  json mats = json::array();
+  for (const char* corner : {"bottom_front_left", "bottom_front_right", "bottom_back_left", "bottom_back_right"})
+    mats.push_back({{"name", std::string("mat_") + corner}, {"kind", "mat"}, {"item", "crate"}, {"point", corner}, {"strength", 6.0}});
+  j["compare"] = {{{"name", "free"}, {"scene", json::object()}}, {{"name", "mats"}, {"scene", {{"restraints", mats}}}}};
+  const StudySpec s = study_of(j);
+  int peeled = 0, held = 0;
+  for (long run = 0; run < s.num_runs(); ++run) {
+    const RunResult r = run_realisation(s, run);
+    REQUIRE(r.status == "completed");
+    const json record = to_json(r);
+    if (r.variant == 0) {
+      CHECK(r.restraints.empty());
+      CHECK_FALSE(record.contains("restraints"));
+      continue;
+    }
+    REQUIRE(r.restraints.size() == 4);
+    CHECK(r.restraints[0].name == "mat_bottom_front_left");
+    CHECK(r.restraints[0].kind == "mat");
+    const RunResult back = run_result_from_json(json::parse(record.dump()));
+    CHECK(to_json(back) == record);
+    const bool all_peeled = std::all_of(r.restraints.begin(), r.restraints.end(), [](const RestraintOutcome& o) { return o.broke; });
+    const bool none_peeled = std::none_of(r.restraints.begin(), r.restraints.end(), [](const RestraintOutcome& o) { return o.broke; });
+    INFO("run " << run << ": slide " << r.bodies[0].slide << " m");
+    if (all_peeled) {
+      ++peeled;
+      CHECK(r.bodies[0].slide > 0.01);
+      CHECK(r.restraints[0].failure == "peel");
+    } else if (none_peeled) {
+      ++held;
+      CHECK(r.bodies[0].slide < 1e-3);
+    }
+  }
+  CHECK(peeled >= 1);
+  CHECK(held >= 1);
+}
+
+}  // namespace study_tests

@@ -637,7 +637,7 @@ class SummaryFile : public RunObserver {
          {motion.peaks().x(), motion.peaks().y(), motion.peaks().z()}},
         {"final_state", detail::final_state_json(sum.items)},
         {"sectional_force_peaks", detail::section_peaks_json(sum.section_peaks)},
-        {"restraints", detail::restraint_outcomes_json(sum.restraints)},
+        {"restraints", restraint_outcomes_json(sum.restraints)},
         {"eigen_version", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
                               std::to_string(EIGEN_MINOR_VERSION)}};
     if (ground) summary["floor_motion_peak_m_s2"] = {run.motion.peaks().x(), run.motion.peaks().y(), run.motion.peaks().z()};

@@ -23,24 +23,42 @@ inline double governing_strength(const Restraint& r) {
   return r.kind == RestraintKind::pole ? std::min(r.p.slip_strength, r.p.board_strength) : r.p.strength;
 }
 
+}  // namespace detail
+
+// One restraint's outcome as summary.json and a study's run records write it (one set of keys), and back.
+inline nlohmann::json restraint_outcome_json(const RestraintOutcome& o) {
+  return {{"name", o.name},
+          {"kind", o.kind},
+          {"item", o.item},
+          {"peak_force_n", o.peak_force},
+          {"strength_n", o.strength},
+          {"peak_ratio", o.peak_ratio},
+          {"broke", o.broke},
+          {"broke_at_s", o.broke ? nlohmann::json(o.broke_at) : nlohmann::json()},
+          {"failure", o.failure},
+          {"dissipated_j", o.dissipated},
+          {"stored_j", o.stored}};
+}
+inline RestraintOutcome restraint_outcome_from_json(const nlohmann::json& j) {
+  RestraintOutcome o;
+  o.name = j.at("name").get<std::string>();
+  o.kind = j.at("kind").get<std::string>();
+  o.item = j.at("item").get<std::string>();
+  o.peak_force = j.at("peak_force_n").get<double>();
+  o.strength = j.at("strength_n").get<double>();
+  o.peak_ratio = j.at("peak_ratio").get<double>();
+  o.broke = j.at("broke").get<bool>();
+  o.broke_at = o.broke ? j.at("broke_at_s").get<double>() : -1;
+  o.failure = j.at("failure").get<std::string>();
+  o.dissipated = j.at("dissipated_j").get<double>();
+  o.stored = j.at("stored_j").get<double>();
+  return o;
+}
 inline nlohmann::json restraint_outcomes_json(const std::vector<RestraintOutcome>& list) {
   nlohmann::json out = nlohmann::json::array();
-  for (const auto& o : list)
-    out.push_back({{"name", o.name},
-                   {"kind", o.kind},
-                   {"item", o.item},
-                   {"peak_force_n", o.peak_force},
-                   {"strength_n", o.strength},
-                   {"peak_ratio", o.peak_ratio},
-                   {"broke", o.broke},
-                   {"broke_at_s", o.broke ? nlohmann::json(o.broke_at) : nlohmann::json()},
-                   {"failure", o.failure},
-                   {"dissipated_j", o.dissipated},
-                   {"stored_j", o.stored}});
+  for (const auto& o : list) out.push_back(restraint_outcome_json(o));
   return out;
 }
-
-}  // namespace detail
 
 class RestraintOutcomes : public RunObserver {
  public:

@@ -50,6 +50,7 @@ struct RunResult {
   double wall_seconds = 0;      // not compared between runs of a study: it depends on the machine
   std::vector<BodyOutcome> bodies;
   std::vector<SectionOutcome> sections;
+  std::vector<RestraintOutcome> restraints;  // the scene's restraints (docs/restraints/restraints.md)
 };
 
 inline constexpr std::array<const char*, 6> section_components{"N", "Qy", "Qz", "Mx", "My", "Mz"};

@@ -95,11 +95,13 @@ FFEM_STUDY_ENTRY RunResult run_realisation(const StudySpec& s, long run, const s
       for (int k = 0; k < 6; ++k) so.abs_max[k] = std::max(std::abs(sp.min[k]), std::abs(sp.max[k]));
       r.sections.push_back(so);
     }
+    r.restraints = sum.restraints;
   } catch (const std::exception& e) {  // a refused scene or model: recorded, the study goes on
     r.status = "failed";
     r.diagnosis = e.what();
     r.bodies.clear();
     r.sections.clear();
+    r.restraints.clear();
   }
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
@@ -152,9 +154,11 @@ FFEM_STUDY_ENTRY nlohmann::json to_json(const RunResult& r) {
     bodies.push_back(std::move(j));
   }
   for (const auto& s : r.sections) sections.push_back({{"section", s.section}, {"abs_max", s.abs_max}});
-  return {{"run", r.run},     {"realisation", r.realisation}, {"variant", r.variant},
-          {"status", r.status}, {"diagnosis", r.diagnosis},   {"t_end", r.t_end},
-          {"wall_seconds", r.wall_seconds}, {"bodies", bodies}, {"sections", sections}};
+  nlohmann::json j = {{"run", r.run},     {"realisation", r.realisation}, {"variant", r.variant},
+                      {"status", r.status}, {"diagnosis", r.diagnosis},   {"t_end", r.t_end},
+                      {"wall_seconds", r.wall_seconds}, {"bodies", bodies}, {"sections", sections}};
+  if (!r.restraints.empty()) j["restraints"] = restraint_outcomes_json(r.restraints);  // records without: as before
+  return j;
 }
 
 FFEM_STUDY_ENTRY RunResult run_result_from_json(const nlohmann::json& j) {
@@ -175,6 +179,8 @@ FFEM_STUDY_ENTRY RunResult run_result_from_json(const nlohmann::json& j) {
   }
   for (const auto& s : j.at("sections"))
     r.sections.push_back({s.at("section").get<std::string>(), s.at("abs_max").get<std::array<double, 6>>()});
+  if (j.contains("restraints"))
+    for (const auto& o : j.at("restraints")) r.restraints.push_back(restraint_outcome_from_json(o));
   return r;
 }
 
