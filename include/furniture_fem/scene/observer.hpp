@@ -48,8 +48,8 @@ class SimulationView {
   virtual double nodal_mass(int node) const = 0;         // kg
   virtual SectionForces section_forces(int element) const = 0;
   virtual EnergyLedger energy() const = 0;               // J; costs a sweep over the elements
-  // Contact force on body_a from body_b, summed per pair, in the last contact evaluation (body_b -1:
-  // the floor, -2: a wall).
+  // Contact force on body_a from body_b, summed per pair, in the last contact evaluation (body_b may be
+  // PairForce::floor_id, wall_id, obstacle_id or ceiling_id).
   virtual const std::vector<PairForce>& pair_forces() const = 0;
   virtual long factorizations() const = 0;
   virtual double factor_reuse_error() const = 0;  // Simulation::factor_reuse_error

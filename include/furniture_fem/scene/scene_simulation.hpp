@@ -111,6 +111,13 @@ inline std::vector<RigidPlane> scene_planes(const SceneSpec& s) {
     p.is_wall = true;
     planes.push_back(p);
   }
+  if (s.ceiling) {  // last: the floor and walls keep their places (and their contacts' order) without one
+    RigidPlane ceiling;
+    ceiling.point = Vec3(0, 0, s.table.floor_z + s.ceiling->height);
+    ceiling.normal = -Vec3::UnitZ();
+    ceiling.is_ceiling = true;
+    planes.push_back(ceiling);
+  }
   return planes;
 }
 
@@ -340,6 +347,34 @@ inline void check_obstacles_clear(const SceneSpec& spec, const Model& model, con
     }
 }
 
+// The highest point of an item's contact at t = 0 above the floor (m): its nodes' heights plus their
+// contact distance against a plane (half the width of a node's narrowest member, as RoomContact's).
+inline double item_top(const SceneSpec& spec, const Model& model, const ItemInfo& item) {
+  std::vector<double> half(model.num_nodes(), std::numeric_limits<double>::infinity());
+  for (int e : model.body(item.body).elements)
+    for (int n : {model.elements()[e].n1, model.elements()[e].n2})
+      half[n] = std::min(half[n], 0.5 * model.section_of(e).contact_width());
+  double top = -std::numeric_limits<double>::infinity();
+  for (int n : model.body(item.body).nodes)
+    top = std::max(top, model.node(n).X.z() + (std::isfinite(half[n]) ? half[n] : 0.0));
+  return top - spec.table.floor_z;
+}
+
+// An item reaching above the ceiling at t = 0 is an InputError naming both: the ceiling would push it
+// down through the floor's contact with energy from nowhere, as an obstacle through an item would.
+// Touching (to 1 um, as obstacle_clearance) is allowed.
+inline void check_ceiling_clear(const SceneSpec& spec, const Model& model, const std::vector<ItemInfo>& items) {
+  if (!spec.ceiling) return;
+  for (const ItemInfo& it : items) {
+    const double top = item_top(spec, model, it);
+    if (!(top > spec.ceiling->height + obstacle_clearance)) continue;
+    throw InputError(spec.source, 0, "ceiling.height",
+                     "item '" + it.name + "' (items[" + std::to_string(spec_item_index(spec, it)) + "]) reaches " +
+                         fmt(top) + " m, above the ceiling at " + fmt(spec.ceiling->height) +
+                         " m (heights above the table's floor); raise the ceiling or lower the item");
+  }
+}
+
 }  // namespace detail
 
 // A scene turned into a composed solver: the model, its items, the table motion and the simulation
@@ -372,6 +407,7 @@ struct SceneSimulation {
     std::vector<MeshObstacle> obstacles;
     for (std::size_t i = 0; i < spec.obstacles.size(); ++i) obstacles.push_back(detail::scene_obstacle(spec, i));
     detail::check_obstacles_clear(spec, *model, items, obstacles);
+    detail::check_ceiling_clear(spec, *model, items);
     for (auto& ob : obstacles) contact.add_obstacle(std::move(ob));
     switch (spec.integrator.scheme) {
       case IntegratorKind::paper_newmark: integrator = RuntimeIntegrator::from(Newmark::paper()); break;
