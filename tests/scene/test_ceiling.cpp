@@ -1,0 +1,311 @@
+// The scene's ceiling ("ceiling": {"height"}): read, written back and refused with named errors; a block
+// thrown up stops at it; a ceiling not touched changes nothing; an item pushed up against it by a table
+// acceleration above g presses on it with M (a - g), rigid and at full fidelity, reported as
+// "<item>|ceiling_f?" in contact_forces.csv.
+#include <catch2/catch.hpp>
+
+#include <furniture_fem/io/csv.hpp>
+#include <furniture_fem/scene/scene_runner.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+using namespace furniture_fem;
+using nlohmann::json;
+using Catch::Matchers::Contains;
+
+namespace ceiling_tests {  // this file's own names (its group compiles files in batches)
+
+namespace {
+
+constexpr double g = 9.80665;
+constexpr double block_mass = 20.0, block_height = 0.4;
+
+// A 0.4 m cube of 20 kg (rigid: the block kind) on the floor, the paper's law, the table's vertical
+// acceleration `z` (a points motion) and, unless nullopt, a ceiling at `ceiling` m.
+json block_scene(const json& z, std::optional<double> ceiling, double duration) {
+  json j = {{"name", "block under a ceiling"},
+            {"items", {{{"kind", "block"},
+                        {"name", "crate"},
+                        {"fidelity", "rigid"},
+                        {"params", {{"width", 0.4}, {"depth", 0.4}, {"height", block_height}, {"mass_kg", block_mass},
+                                    {"mu_floor_long", 0.3}, {"mu_floor_short", 0.3}}}}}},
+            {"ground_motion", {{"source", "points"}, {"z", z}}},
+            {"duration", duration},
+            {"dt", 0.001},
+            {"outputs", {{"figures", false}}}};
+  if (ceiling) j["ceiling"] = {{"height", *ceiling}};
+  return j;
+}
+
+std::string read_error(const json& j) {
+  try {
+    validate(parse_scene_json(j, "ceiling.json"));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+std::string build_error(const json& j) {
+  try {
+    const SceneSpec spec = parse_scene_json(j, "ceiling.json");
+    validate(spec);
+    const SceneSimulation<DirectLdltSolver> scene(spec);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+// The table's vertical acceleration: 0 until t0, then -a (downwards) for T s, 1 ms ramps either side.
+json downward_pulse(double t0, double a, double T) {
+  return {{0.0, 0.0}, {t0, 0.0}, {t0 + 0.001, -a}, {t0 + T, -a}, {t0 + T + 0.001, 0.0}, {10.0, 0.0}};
+}
+
+// A point mass on a rigid floor in the table's frame under the same table motion: its highest rise
+// (m) and its speed when it last passed `at` going up (m/s), integrated at 1 us (the reference, free of
+// the contact law and of the element code).
+struct FreeFlight {
+  double apex = 0, speed_at = 0;
+};
+FreeFlight point_mass_flight(const TableMotion& motion, double t_end, double at) {
+  const double h = 1e-6;
+  double z = 0, v = 0;
+  FreeFlight out;
+  for (double t = 0; t < t_end; t += h) {
+    double acc = -(g + motion.at(t).z());
+    if (z <= 0 && acc < 0) acc = 0, v = std::max(v, 0.0), z = 0;  // on the floor: held
+    const double z_before = z;
+    v += acc * h;
+    z += v * h;
+    if (z_before < at && z >= at) out.speed_at = v;
+    out.apex = std::max(out.apex, z);
+  }
+  return out;
+}
+
+// The block's highest rise (m) above where it stood settled at t0, over the run to t_end.
+double block_rise(const json& j, double t0, double t_end, double* top_rest_gap = nullptr) {
+  const SceneSpec spec = parse_scene_json(j, "throw.json");
+  validate(spec);
+  SceneSimulation<DirectLdltSolver> scene(spec);
+  REQUIRE(scene.rigid_bodies.size() == 1);
+  const int hub = scene.items[0].marker("cog")->node;
+  scene.sim->run_until(t0);
+  const double settled = scene.sim->displacement(hub).z();
+  if (top_rest_gap) *top_rest_gap = -settled;  // how far the weight pressed it into the floor
+  double rise = 0;
+  while (scene.sim->time() < t_end - 1e-9) {
+    scene.sim->step();
+    rise = std::max(rise, scene.sim->displacement(hub).z() - settled);
+  }
+  return rise;
+}
+
+// The number of the block's nodes on its top face (the contact's support face against the ceiling).
+int top_face_nodes(const json& j) {
+  const SceneSpec spec = parse_scene_json(j, "nodes.json");
+  const SceneSimulation<DirectLdltSolver> scene(spec);
+  double top = -1e9;
+  for (int n = 0; n < scene.model->num_nodes(); ++n) top = std::max(top, scene.model->node(n).X.z());
+  int count = 0;
+  for (int n = 0; n < scene.model->num_nodes(); ++n) count += scene.model->node(n).X.z() > top - 1e-9;
+  return count;
+}
+
+}  // namespace
+
+TEST_CASE("ceiling: read, written back, absent by default; bad values and keys name the key",
+          "[scene][ceiling][errors]") {
+  const json pulse = downward_pulse(0.2, 2 * g, 0.1);
+  const SceneSpec none = parse_scene_json(block_scene(pulse, std::nullopt, 0.5), "none.json");
+  CHECK_FALSE(none.ceiling);
+  CHECK_FALSE(to_json(none).contains("ceiling"));  // a scene without one is written as before
+  const SceneSpec s = parse_scene_json(block_scene(pulse, 2.0, 0.5), "c.json");
+  REQUIRE(s.ceiling);
+  CHECK(s.ceiling->height == 2.0);
+  const json written = to_json(s);
+  CHECK(written["ceiling"] == json{{"height", 2.0}});
+  const SceneSpec again = parse_scene_json(written, "again.json");
+  REQUIRE(again.ceiling);
+  CHECK(again.ceiling->height == 2.0);
+  CHECK(to_json(again) == written);
+
+  const json base = block_scene(pulse, 2.0, 0.5);
+  for (const auto& [ceiling, expect] :
+       {std::pair{json{{"height", 0.0}}, "ceiling.height: must be positive (got 0"},
+        std::pair{json{{"height", -1.5}}, "ceiling.height: must be positive (got -1.5)"},
+        std::pair{json{{"height", 2e4}}, "ceiling.height: must lie in [0, 10000] (got 20000"},
+        std::pair{json{{"height", "2"}}, "ceiling.height: expected a number, got a string"},
+        std::pair{json::object(), "ceiling.height: required: the ceiling's height above the table's floor (m)"},
+        std::pair{json{{"height", 2.0}, {"z", 2.0}}, "ceiling.z: unknown key; allowed here: height"},
+        std::pair{json(2.0), "ceiling: expected an object, got a number"}}) {
+    json bad = base;
+    bad["ceiling"] = ceiling;
+    const std::string message = read_error(bad);
+    INFO(ceiling.dump() << " -> " << message);
+    CHECK_THAT(message, Contains(expect));
+  }
+  // JSON holds no NaN or infinity: a SceneSpec made in code is checked by validate().
+  for (const double h : {std::nan(""), INFINITY, -INFINITY, 0.0, 1e5}) {
+    SceneSpec code = s;
+    code.ceiling->height = h;
+    std::string message = "no error";
+    try {
+      validate(code);
+    } catch (const InputError& e) {
+      message = e.what();
+    }
+    INFO(h << " -> " << message);
+    CHECK_THAT(message, Contains("ceiling.height: must be positive, finite and at most 10000 m (got "));
+  }
+  // An item reaching above it at t = 0 (the block's top is its height: its top nodes' centre lines sit
+  // half an edge width, 5 mm, below it); touching is allowed.
+  CHECK_THAT(build_error(block_scene(pulse, 0.35, 0.5)),
+             Contains("ceiling.height: item 'crate' (items[0]) reaches 0.4 m, above the ceiling at 0.35 m (heights "
+                      "above the table's floor); raise the ceiling or lower the item"));
+  CHECK(build_error(block_scene(pulse, block_height, 0.5)) == "no error");
+  json lifted_floor = block_scene(pulse, 0.39, 0.5);
+  lifted_floor["table"] = {{"floor_z", 3.0}};  // heights count from the floor
+  CHECK_THAT(build_error(lifted_floor), Contains("reaches 0.4 m, above the ceiling at 0.39 m"));
+  lifted_floor["ceiling"]["height"] = 0.41;
+  CHECK(build_error(lifted_floor) == "no error");
+}
+
+TEST_CASE("a block thrown up reaches its ballistic apex without a ceiling and stops at the ceiling with one",
+          "[scene][ceiling][dynamics]") {
+  // The table accelerates downwards at 2 g for 0.1 s (after 0.2 s of settling): in its frame the block
+  // rises at g, then flies freely. Closed form without the ramps: v = g T at the pulse's end, 0.049 m up,
+  // then v^2 / (2 g) = 0.049 m more: apex (a - g) a T^2 / (2 g) = 0.0981 m. The reference integrates a
+  // point mass on a rigid floor under the same motion (its 1 ms ramps included).
+  const double a = 2 * g, T = 0.1, t0 = 0.2, t_end = 0.75;
+  const json pulse = downward_pulse(t0, a, T);
+  const SceneSpec spec = parse_scene_json(block_scene(pulse, std::nullopt, 1.0), "throw.json");
+  const TableMotion motion = scene_table_motion(spec);
+  const FreeFlight free = point_mass_flight(motion, t_end, 0.0);
+  CHECK(free.apex == Approx((a - g) * a * T * T / (2 * g)).epsilon(0.03));  // the ramps: about 1 %
+
+  double pressed = 0;
+  const double rise = block_rise(block_scene(pulse, std::nullopt, 1.0), t0, t_end, &pressed);
+  // Without a ceiling: the block's rise is the free flight's apex plus what its weight pressed it into
+  // the floor (the penalty's resting overlap, given back on leaving). Measured: apex 0.0985 m, pressed
+  // 0.2 mm; bound 1 mm.
+  INFO("no ceiling: rise " << rise << " m, point mass " << free.apex << " m, resting overlap " << pressed << " m");
+  CHECK(std::abs(rise - free.apex - pressed) < 1e-3);
+
+  // A ceiling 80 mm above the block's top: it reaches it at v_hit = sqrt(2 g (apex - 0.08)) and the
+  // ceiling stops it within its penalty's overlap. Bound on that overlap: the contact is N alpha / L
+  // per metre (the paper's law, q = 1: each of the top face's N nodes alpha g / L, the face's four
+  // corners standing for them), alpha = M g (the block's weight), L = 5 mm (half its 10 mm edge); the
+  // block's kinetic energy M v_hit^2 / 2 stored in it gives v_hit sqrt(L / (N g)), a bound (gravity
+  // and the law's damping take some of the energy). It must reach the ceiling: at least the gap.
+  const double gap = 0.08;
+  const json with = block_scene(pulse, block_height + gap, 1.0);
+  const int N = top_face_nodes(with);
+  const double v_hit = point_mass_flight(motion, t_end, gap).speed_at;
+  const double overlap_bound = v_hit * std::sqrt(0.005 / (N * g));
+  const double stopped = block_rise(with, t0, t_end);
+  INFO("ceiling " << gap << " m above: rise " << stopped << " m, hit at " << v_hit << " m/s, " << N
+                  << " top nodes, overlap bound " << overlap_bound << " m");
+  CHECK(v_hit > 0.5);
+  CHECK(stopped > gap + pressed - 1e-4);
+  CHECK(stopped < gap + pressed + overlap_bound);
+}
+
+TEST_CASE("a ceiling the block does not touch changes nothing, to the bit", "[scene][ceiling]") {
+  // The block slides under a table acceleration of 0.6 g along X (mu 0.3) with a ceiling 1 mm above
+  // its top and without one: every node at every 50th step is where it is without the ceiling.
+  json j = block_scene({{0.0, 0.0}, {1.0, 0.0}}, std::nullopt, 0.6);
+  j["ground_motion"]["x"] = {{0.2, 0.0}, {0.201, 0.6 * g}, {5.0, 0.6 * g}};
+  json with = j;
+  with["ceiling"] = {{"height", block_height + 0.001}};
+  SceneSimulation<DirectLdltSolver> a(parse_scene_json(j, "a.json")), b(parse_scene_json(with, "b.json"));
+  const int hub = a.items[0].marker("cog")->node;
+  int compared = 0;
+  while (a.sim->time() < 0.6 - 1e-9) {
+    a.sim->step();
+    b.sim->step();
+    if (a.sim->steps() % 50) continue;
+    for (int n = 0; n < a.model->num_nodes(); ++n) REQUIRE(a.sim->position(n) == b.sim->position(n));
+    ++compared;
+  }
+  CHECK(compared == 12);
+  CHECK(a.sim->displacement(hub).x() < -0.1);  // it did slide (closed form -(0.6 - 0.3) g t^2 / 2 = -0.24 m)
+}
+
+namespace {
+
+// Run `j` (with files) pushed up against a ceiling at its top by a table acceleration of -a_table
+// (downwards, ramped over 0.2 s from 0.1 s): the mean over the rows from t_from of the ceiling's and
+// the floor's force on item `item` (N, z), from contact_forces.csv.
+std::pair<double, double> pressed_forces(json j, const std::string& name, const std::string& item, double t_from) {
+  const std::string out = (std::filesystem::path(FFEM_TEST_TMP) / "ceiling" / name).string();
+  std::filesystem::remove_all(out);
+  RunOptions o;
+  o.out_dir = out;
+  o.progress = false;
+  const RunSummary s = run_scene(parse_scene_json(j, name + ".json"), o);
+  REQUIRE(s.status == "completed");
+  const CsvTable cf = read_csv(out + "/contact_forces.csv");
+  const auto &t = cf.column("t"), &ceiling = cf.column(item + "|ceiling_fz"), &floor = cf.column(item + "|floor_fz");
+  CHECK(cf.has(item + "|ceiling_fx"));
+  CHECK(cf.has(item + "|ceiling_fy"));
+  double on_ceiling = 0, on_floor = 0;
+  int rows = 0;
+  for (std::size_t r = 0; r < cf.rows(); ++r)
+    if (t[r] >= t_from) on_ceiling += ceiling[r], on_floor += floor[r], ++rows;
+  REQUIRE(rows > 10);
+  return {on_ceiling / rows, on_floor / rows};
+}
+
+json pushed_up(double a_table) { return {{0.0, 0.0}, {0.1, 0.0}, {0.3, -a_table}, {10.0, -a_table}}; }
+
+}  // namespace
+
+TEST_CASE("an item pushed up against the ceiling presses on it with M (a - g), rigid and at full fidelity",
+          "[scene][ceiling][dynamics]") {
+  // The table accelerates downwards at a = 1.5 g: in its frame the item is pushed up at a - g = 0.5 g
+  // against the ceiling at its top (touching at t = 0), which holds it with M (a - g), pushing down; the
+  // floor then carries nothing. Rows' means over the last 0.4 s (the force settles within 0.3 s of the
+  // ramp's end). Bound 1 % of M (a - g).
+  const double a = 1.5 * g;
+  SECTION("a rigid block") {
+    const json j = block_scene(pushed_up(a), block_height, 1.0);
+    const auto [on_ceiling, on_floor] = pressed_forces(j, "block", "crate", 0.6);
+    const double expected = -block_mass * (a - g);
+    INFO("ceiling on the block " << on_ceiling << " N, expected " << expected << " N; floor " << on_floor << " N");
+    CHECK(on_ceiling == Approx(expected).epsilon(0.01));
+    CHECK(std::abs(on_floor) < 1e-3 * std::abs(expected));
+  }
+  SECTION("a table at full fidelity") {
+    // Its mass from the built model (Table 2's rule); its top board's outer face at its height.
+    json j = {{"name", "table under a ceiling"},
+              {"items", {{{"kind", "table"}, {"name", "it"}, {"fidelity", "full"}}}},
+              {"ground_motion", {{"source", "points"}, {"z", pushed_up(a)}}},
+              {"duration", 1.0},
+              {"dt", 0.001},
+              {"integrator", {{"stiffness_damping", 1e-3}}},
+              {"outputs", {{"figures", false}}}};
+    const SceneSpec spec = parse_scene_json(j, "table.json");
+    double mass = 0, top = 0;
+    {
+      const SceneSimulation<DirectLdltSolver> scene(spec);
+      mass = scene.model->body_mass(0);
+      top = detail::item_top(spec, *scene.model, scene.items[0]);
+    }
+    j["ceiling"] = {{"height", top}};
+    const auto [on_ceiling, on_floor] = pressed_forces(j, "table", "it", 0.6);
+    const double expected = -mass * (a - g);
+    INFO("ceiling on the table (" << mass << " kg, top " << top << " m) " << on_ceiling << " N, expected " << expected
+                                  << " N; floor " << on_floor << " N");
+    CHECK(on_ceiling == Approx(expected).epsilon(0.01));
+    CHECK(std::abs(on_floor) < 1e-3 * std::abs(expected));
+  }
+}
+
+}  // namespace ceiling_tests
