@@ -81,6 +81,17 @@ struct RigidPlane {
   }
 };
 
+// Each node's contact distance against a plane: half the width of its narrowest member (a corner of
+// 50 mm tubes: 25 mm; a caster node joined to a wide side-table beam: the caster's); infinite for a
+// node on no member.
+inline std::vector<double> plane_contact_distances(const Model& model) {
+  std::vector<double> half(model.num_nodes(), std::numeric_limits<double>::infinity());
+  for (int e = 0; e < model.num_elements(); ++e)
+    for (int n : {model.elements()[e].n1, model.elements()[e].n2})
+      half[n] = std::min(half[n], 0.5 * model.section_of(e).contact_width());
+  return half;
+}
+
 // The contact law enters through its kernel (contact_law_kernel.hpp): RoomContact, and the Simulation
 // that holds it, are one type whatever the law.
 class RoomContact {
@@ -124,13 +135,7 @@ class RoomContact {
       law_->validate(b.wall);
       law_->validate(b.item);
     }
-    // A node's contact distance against a plane: half the width of its narrowest member (a corner
-    // of 50 mm tubes: 25 mm; a caster node joined to a wide side-table beam: the caster's).
-    half_width_.assign(model.num_nodes(), std::numeric_limits<double>::infinity());
-    for (int e = 0; e < model.num_elements(); ++e) {
-      const double h = 0.5 * model.section_of(e).contact_width();
-      for (int n : {model.elements()[e].n1, model.elements()[e].n2}) half_width_[n] = std::min(half_width_[n], h);
-    }
+    half_width_ = plane_contact_distances(model);
     caster_.assign(model.num_nodes(), 0);
     for (const auto& b : bodies_)
       for (int n : b.caster_nodes) caster_.at(n) = 1;

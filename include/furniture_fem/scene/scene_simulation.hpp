@@ -157,10 +157,7 @@ struct ContactStepEstimate {
 template <class Sim>
 ContactStepEstimate contact_step_estimate(const Sim& sim, const Model& model, const std::vector<ItemInfo>& items,
                                           const std::vector<BodyContact>& contacts, ContactLawKind law) {
-  std::vector<double> half(model.num_nodes(), std::numeric_limits<double>::infinity());
-  for (int e = 0; e < model.num_elements(); ++e)
-    for (int n : {model.elements()[e].n1, model.elements()[e].n2})
-      half[n] = std::min(half[n], 0.5 * model.section_of(e).contact_width());
+  const std::vector<double> half = plane_contact_distances(model);
   ContactStepEstimate est;
   const SceneLawInfo& info = scene_law(law);
   est.stiffness_key = info.reads("alpha_kgf")   ? "the penalty alpha_kgf"
@@ -347,17 +344,18 @@ inline void check_obstacles_clear(const SceneSpec& spec, const Model& model, con
     }
 }
 
-// The highest point of an item's contact at t = 0 above the floor (m): its nodes' heights plus their
-// contact distance against a plane (half the width of a node's narrowest member, as RoomContact's).
-inline double item_top(const SceneSpec& spec, const Model& model, const ItemInfo& item) {
-  std::vector<double> half(model.num_nodes(), std::numeric_limits<double>::infinity());
-  for (int e : model.body(item.body).elements)
-    for (int n : {model.elements()[e].n1, model.elements()[e].n2})
-      half[n] = std::min(half[n], 0.5 * model.section_of(e).contact_width());
-  double top = -std::numeric_limits<double>::infinity();
-  for (int n : model.body(item.body).nodes)
-    top = std::max(top, model.node(n).X.z() + (std::isfinite(half[n]) ? half[n] : 0.0));
-  return top - spec.table.floor_z;
+// The highest point of each item's contact at t = 0 above the floor (m): its nodes' heights plus their
+// contact distance against a plane (plane_contact_distances).
+inline std::vector<double> item_tops(const SceneSpec& spec, const Model& model, const std::vector<ItemInfo>& items) {
+  const std::vector<double> half = plane_contact_distances(model);
+  std::vector<double> tops;
+  for (const ItemInfo& it : items) {
+    double top = -std::numeric_limits<double>::infinity();
+    for (int n : model.body(it.body).nodes)
+      top = std::max(top, model.node(n).X.z() + (std::isfinite(half[n]) ? half[n] : 0.0));
+    tops.push_back(top - spec.table.floor_z);
+  }
+  return tops;
 }
 
 // An item reaching above the ceiling at t = 0 is an InputError naming both: the ceiling would push it
@@ -365,12 +363,12 @@ inline double item_top(const SceneSpec& spec, const Model& model, const ItemInfo
 // Touching (to 1 um, as obstacle_clearance) is allowed.
 inline void check_ceiling_clear(const SceneSpec& spec, const Model& model, const std::vector<ItemInfo>& items) {
   if (!spec.ceiling) return;
-  for (const ItemInfo& it : items) {
-    const double top = item_top(spec, model, it);
-    if (!(top > spec.ceiling->height + obstacle_clearance)) continue;
+  const std::vector<double> tops = item_tops(spec, model, items);
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (!(tops[i] > spec.ceiling->height + obstacle_clearance)) continue;
     throw InputError(spec.source, 0, "ceiling.height",
-                     "item '" + it.name + "' (items[" + std::to_string(spec_item_index(spec, it)) + "]) reaches " +
-                         fmt(top) + " m, above the ceiling at " + fmt(spec.ceiling->height) +
+                     "item '" + items[i].name + "' (items[" + std::to_string(spec_item_index(spec, items[i])) +
+                         "]) reaches " + fmt(tops[i]) + " m, above the ceiling at " + fmt(spec.ceiling->height) +
                          " m (heights above the table's floor); raise the ceiling or lower the item");
   }
 }
