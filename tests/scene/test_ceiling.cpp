@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -152,7 +153,8 @@ TEST_CASE("ceiling: read, written back, absent by default; bad values and keys n
     CHECK_THAT(message, Contains(expect));
   }
   // JSON holds no NaN or infinity: a SceneSpec made in code is checked by validate().
-  for (const double h : {std::nan(""), INFINITY, -INFINITY, 0.0, 1e5}) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  for (const double h : {std::numeric_limits<double>::quiet_NaN(), inf, -inf, 0.0, 1e5}) {
     SceneSpec code = s;
     code.ceiling->height = h;
     std::string message = "no error";
