@@ -638,7 +638,8 @@ class RoomContact {
   ContactParams plane_params(const Model& model, int n, size_t p, double share) const {
     const RigidPlane& pl = planes_[p];
     const int body = model.node(n).body;
-    // The ceiling is met as a wall is (a body's top is no footing: neither its floor friction nor its casters').
+    // The ceiling is met as a wall is: a body's top is no footing (neither its floor friction nor its
+    // casters' applies).
     ContactParams prm = pl.is_floor() ? bodies_[body].floor : bodies_[body].wall;
     if (pl.is_floor() && caster_[n] && bodies_[body].caster_mu >= 0) {
       prm.mu = prm.mu_long = prm.mu_short = bodies_[body].caster_mu;

@@ -264,8 +264,8 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
   SceneSpec s;
   s.source = source;
   const ObjectReader r(j, "", source);
-  r.allow_only({"name", "table", "walls", "ceiling", "obstacles", "items", "ground_motion", "contact", "integrator", "solver",
-                "refresh_every", "duration", "dt", "allow_coarse_dt", "outputs"});
+  r.allow_only({"name", "table", "walls", "ceiling", "obstacles", "items", "ground_motion", "contact", "integrator",
+                "solver", "refresh_every", "duration", "dt", "allow_coarse_dt", "outputs"});
   s.name = r.string("name", s.name);
 
   if (r.has("table")) {

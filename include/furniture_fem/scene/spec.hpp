@@ -1,7 +1,7 @@
 #pragma once
-// furniture_fem/scene/spec.hpp: what a run simulates, as plain data: the shake table, its walls and ceiling, mesh
-// obstacles, the furniture items and where they stand, the ground motion, the contact law, the time
-// integration, and what to write out. Read from JSON by scene/reader.hpp (docs/scene/scene_file.md).
+// furniture_fem/scene/spec.hpp: what a run simulates, as plain data: the shake table, its walls and
+// ceiling, mesh obstacles, the furniture items and where they stand, the ground motion, the contact law,
+// the time integration, and what to write out. Read from JSON by scene/reader.hpp (docs/scene/scene_file.md).
 #include <algorithm>
 #include <array>
 #include <cmath>
