@@ -5,10 +5,12 @@
 
 namespace furniture_fem {
 
-// Sum of contact force magnitudes between two bodies (or a body and the floor/walls: -1 / -2) in
-// the last evaluation, for the per-pair force histories.
+// Sum of contact force magnitudes between two bodies (or a body and the floor, the walls, the mesh
+// obstacles or the ceiling: body_b one of the ids below) in the last evaluation, for the per-pair
+// force histories.
 struct PairForce {
   static constexpr bool checkpoint_as_bytes = true;  // core/checkpoint.hpp
+  static constexpr int floor_id = -1, wall_id = -2, obstacle_id = -3, ceiling_id = -4;
   int body_a, body_b;
   Vec3 force_on_a;
 };

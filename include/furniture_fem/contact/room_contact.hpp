@@ -4,7 +4,7 @@
 //   RoomContact  plugs into Simulation<..., Contact = RoomContact>, with any contact law (its kernel)
 //
 // It applies a contact law (contact_laws.hpp) to three kinds of pairs, all in the table frame:
-//  - node against the floor (z = 0) and against the walls (planes, bounded): l is the node's distance
+//  - node against the floor (z = 0), the walls (planes, bounded) and a ceiling: l is the node's distance
 //    to the plane and L half the width of the node's widest member (the paper judges floor and wall
 //    contact from nodal coordinates);
 //  - element against element of two different bodies: capsules around the centre lines, l the
@@ -65,12 +65,16 @@ struct BodyContact {
 };
 
 // A rigid plane: points with (x - point) . normal >= 0 are outside. Bounded by half extents along
-// two in-plane axes (infinite when the extents are not positive).
+// two in-plane axes (infinite when the extents are not positive). A floor unless it is a wall or the
+// ceiling: a wall and the ceiling take each body's wall parameters (BodyContact::wall), the floor its
+// floor parameters (and the casters' friction); each kind is reported as its own partner (pair_id).
 struct RigidPlane {
   Vec3 point = Vec3::Zero(), normal = Vec3::UnitZ();
   Vec3 axis_u = Vec3::UnitX(), axis_v = Vec3::UnitY();
   double half_u = 0, half_v = 0;
   bool is_wall = false;
+  bool is_ceiling = false;
+  bool is_floor() const { return !is_wall && !is_ceiling; }
   bool contains_projection(const Vec3& x) const {
     if (half_u <= 0 || half_v <= 0) return true;
     const Vec3 r = x - point;
@@ -78,11 +82,25 @@ struct RigidPlane {
   }
 };
 
+// Each node's contact distance against a plane: half the width of its narrowest member (a corner of
+// 50 mm tubes: 25 mm; a caster node joined to a wide side-table beam: the caster's); infinite for a
+// node on no member.
+inline std::vector<double> plane_contact_distances(const Model& model) {
+  std::vector<double> half(model.num_nodes(), std::numeric_limits<double>::infinity());
+  for (int e = 0; e < model.num_elements(); ++e)
+    for (int n : {model.elements()[e].n1, model.elements()[e].n2})
+      half[n] = std::min(half[n], 0.5 * model.section_of(e).contact_width());
+  return half;
+}
+
 // The contact law enters through its kernel (contact_law_kernel.hpp): RoomContact, and the Simulation
 // that holds it, are one type whatever the law.
 class RoomContact {
  public:
-  static constexpr int floor_id = -1, wall_id = -2, obstacle_id = -3;
+  // The partners of a body's pair forces that are not bodies (PairForce::body_b).
+  static constexpr int floor_id = PairForce::floor_id, wall_id = PairForce::wall_id,
+                       obstacle_id = PairForce::obstacle_id, ceiling_id = PairForce::ceiling_id;
+  static int pair_id(const RigidPlane& pl) { return pl.is_ceiling ? ceiling_id : pl.is_wall ? wall_id : floor_id; }
   // Candidate pairs come from boxes inflated by `margin`; the broad phase runs again as soon as any
   // node has moved more than margin / 2 since the last run (two capsules can then have approached by
   // at most the margin, so no contact is missed), checked at every evaluation in O(nodes).
@@ -118,13 +136,7 @@ class RoomContact {
       law_->validate(b.wall);
       law_->validate(b.item);
     }
-    // A node's contact distance against a plane: half the width of its narrowest member (a corner
-    // of 50 mm tubes: 25 mm; a caster node joined to a wide side-table beam: the caster's).
-    half_width_.assign(model.num_nodes(), std::numeric_limits<double>::infinity());
-    for (int e = 0; e < model.num_elements(); ++e) {
-      const double h = 0.5 * model.section_of(e).contact_width();
-      for (int n : {model.elements()[e].n1, model.elements()[e].n2}) half_width_[n] = std::min(half_width_[n], h);
-    }
+    half_width_ = plane_contact_distances(model);
     caster_.assign(model.num_nodes(), 0);
     for (const auto& b : bodies_)
       for (int n : b.caster_nodes) caster_.at(n) = 1;
@@ -424,7 +436,7 @@ class RoomContact {
         if (!cf.in_contact) continue;
         const Vec3& x = view.x[n];
         f.template segment<3>(6 * n) += cf.on_a;
-        add_pair_force(body, planes_[p].is_wall ? wall_id : floor_id, cf.on_a);
+        add_pair_force(body, pair_id(planes_[p]), cf.on_a);
         ++active_;
         if (!implicit || !bodies_[body].implicit) continue;
         plane_applied_.emplace_back(n, wrench(cf.on_a));
@@ -524,7 +536,7 @@ class RoomContact {
     const Vec3 moment = pc.arm.cross(cf.on_a);
     f.template segment<3>(6 * n) += cf.on_a;
     f.template segment<3>(6 * n + 3) += moment;
-    add_pair_force(body, planes_[p].is_wall ? wall_id : floor_id, cf.on_a);
+    add_pair_force(body, pair_id(planes_[p]), cf.on_a);
     ++active_;
     if (!implicit || !bodies_[body].implicit) return;
     Vec6 w;
@@ -612,8 +624,10 @@ class RoomContact {
   ContactParams plane_params(const Model& model, int n, size_t p, double share) const {
     const RigidPlane& pl = planes_[p];
     const int body = model.node(n).body;
-    ContactParams prm = pl.is_wall ? bodies_[body].wall : bodies_[body].floor;
-    if (!pl.is_wall && caster_[n] && bodies_[body].caster_mu >= 0) {
+    // The ceiling is met as a wall is: a body's top is no footing (neither its floor friction nor its
+    // casters' applies).
+    ContactParams prm = pl.is_floor() ? bodies_[body].floor : bodies_[body].wall;
+    if (pl.is_floor() && caster_[n] && bodies_[body].caster_mu >= 0) {
       prm.mu = prm.mu_long = prm.mu_short = bodies_[body].caster_mu;
     }
     // Standing for `share` nodes: every force coefficient the law declares per_node `share` times one node's.

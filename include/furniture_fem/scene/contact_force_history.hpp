@@ -20,7 +20,8 @@ namespace furniture_fem {
 
 // contact_forces.csv: t, then three columns per pair of contact partners, named by the item and the
 // partner: "<item>|floor_fx", "<item>|walls_fx" (every wall together), "<item>|obstacles_fx" (every
-// mesh obstacle together; only when the scene has obstacles) and "<item>|<other item>_fx" for every
+// mesh obstacle together; only when the scene has obstacles), "<item>|ceiling_fx" (only when the scene
+// has a ceiling) and "<item>|<other item>_fx" for every
 // pair of items (the item first in the scene's order first), _fy, _fz likewise: the force on the first
 // from the second (N), 0 when they do not touch. Each is its mean over the steps since the previous
 // row: a penalty contact at rest chatters from one step to the next, and single steps sampled one
@@ -33,10 +34,12 @@ class ContactForceHistory : public RunObserver {
     std::vector<std::pair<std::pair<int, int>, std::string>> out;
     const int nb = run.model.num_bodies();
     const auto name = [&](int b) { return run.model.body(b).name; };
-    for (int a = 0; a < nb; ++a) out.push_back({{a, -1}, name(a) + "|floor"});
-    for (int a = 0; a < nb; ++a) out.push_back({{a, -2}, name(a) + "|walls"});
+    for (int a = 0; a < nb; ++a) out.push_back({{a, PairForce::floor_id}, name(a) + "|floor"});
+    for (int a = 0; a < nb; ++a) out.push_back({{a, PairForce::wall_id}, name(a) + "|walls"});
     if (!run.spec.obstacles.empty())
-      for (int a = 0; a < nb; ++a) out.push_back({{a, -3}, name(a) + "|obstacles"});
+      for (int a = 0; a < nb; ++a) out.push_back({{a, PairForce::obstacle_id}, name(a) + "|obstacles"});
+    if (run.spec.ceiling)
+      for (int a = 0; a < nb; ++a) out.push_back({{a, PairForce::ceiling_id}, name(a) + "|ceiling"});
     if (run.spec.outputs.pair_columns(nb))
       for (int a = 0; a < nb; ++a)
         for (int b = a + 1; b < nb; ++b) out.push_back({{a, b}, name(a) + "|" + name(b)});

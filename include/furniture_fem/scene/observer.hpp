@@ -49,8 +49,8 @@ class SimulationView {
   virtual double nodal_mass(int node) const = 0;         // kg
   virtual SectionForces section_forces(int element) const = 0;
   virtual EnergyLedger energy() const = 0;               // J; costs a sweep over the elements
-  // Contact force on body_a from body_b, summed per pair, in the last contact evaluation (body_b -1:
-  // the floor, -2: a wall).
+  // Contact force on body_a from body_b, summed per pair, in the last contact evaluation (body_b may be
+  // PairForce::floor_id, wall_id, obstacle_id or ceiling_id).
   virtual const std::vector<PairForce>& pair_forces() const = 0;
   virtual const RestraintSet& restraints() const = 0;  // the room's restraints and their committed states
   virtual long factorizations() const = 0;

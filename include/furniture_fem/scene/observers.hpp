@@ -791,6 +791,11 @@ class Figures : public RunObserver {
       const Vec3 h(0, 0, wall.height);
       w.add_quad({wall.point - u, wall.point + u, wall.point + u + h, wall.point - u + h}, RGB{150, 150, 150}, 0.15);
     }
+    if (spec.ceiling) {  // its outline over the table (it is unbounded; a fill would hide the items)
+      const double hx = 0.5 * spec.table.size_x, hy = 0.5 * spec.table.size_y;
+      const double z = spec.table.floor_z + spec.ceiling->height;
+      w.add_quad({Vec3(-hx, -hy, z), Vec3(hx, -hy, z), Vec3(hx, hy, z), Vec3(-hx, hy, z)}, RGB{150, 150, 150}, 0.0);
+    }
     for (const auto& it : run.items) {
       w.legend(it.name, palette_color(it.body));
       // The label sits over the item's highest point now: the centre of its nodes within 1 mm of the top.

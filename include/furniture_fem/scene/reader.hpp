@@ -265,8 +265,8 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
   SceneSpec s;
   s.source = source;
   const ObjectReader r(j, "", source);
-  r.allow_only({"name", "table", "walls", "obstacles", "items", "restraints", "ground_motion", "contact", "integrator", "solver",
-                "refresh_every", "duration", "dt", "allow_coarse_dt", "outputs"});
+  r.allow_only({"name", "table", "walls", "ceiling", "obstacles", "items", "restraints", "ground_motion", "contact",
+                "integrator", "solver", "refresh_every", "duration", "dt", "allow_coarse_dt", "outputs"});
   s.name = r.string("name", s.name);
 
   if (r.has("table")) {
@@ -307,6 +307,15 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
       }
       s.walls.push_back(wall);
     });
+  }
+
+  if (r.has("ceiling")) {
+    const ObjectReader c = r.object("ceiling");
+    c.allow_only({"height"});
+    if (!c.has("height")) c.fail(c.path("height"), "required: the ceiling's height above the table's floor (m)");
+    s.ceiling = CeilingSpec{c.number("height", 0)};
+    c.positive("height");
+    c.in_range("height", 0, scene_reach);
   }
 
   r.array("obstacles", [&](const nlohmann::json& v, const std::string& path) {

@@ -646,8 +646,9 @@ FFEM_SCENE_ENTRY_INLINE void check_run_start(const SceneSpec& spec, const RunOpt
 }
 
 // What run_scene refuses once the model is built, before the first step: an obstacle passing through
-// an item at t = 0 (detail::check_obstacles_clear) and a dt too long for the explicit contact
-// (check_contact_step). A study checks each variant's scene with it before its first run.
+// an item at t = 0 (detail::check_obstacles_clear), an item above the ceiling (check_ceiling_clear) and
+// a dt too long for the explicit contact (check_contact_step). A study checks each variant's scene with
+// it before its first run.
 FFEM_SCENE_ENTRY_INLINE void check_scene_model(const SceneSpec& spec) {
   if (spec.solver != SolverKind::direct) {
     const SceneSimulation<ConjugateGradientSolver> scene(spec, 0, 1);

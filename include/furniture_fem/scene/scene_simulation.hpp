@@ -115,6 +115,13 @@ inline std::vector<RigidPlane> scene_planes(const SceneSpec& s) {
     p.is_wall = true;
     planes.push_back(p);
   }
+  if (s.ceiling) {  // last: the floor and walls keep their places (and their contacts' order) without one
+    RigidPlane ceiling;
+    ceiling.point = Vec3(0, 0, s.table.floor_z + s.ceiling->height);
+    ceiling.normal = -Vec3::UnitZ();
+    ceiling.is_ceiling = true;
+    planes.push_back(ceiling);
+  }
   return planes;
 }
 
@@ -154,10 +161,7 @@ struct ContactStepEstimate {
 template <class Sim>
 ContactStepEstimate contact_step_estimate(const Sim& sim, const Model& model, const std::vector<ItemInfo>& items,
                                           const std::vector<BodyContact>& contacts, ContactLawKind law) {
-  std::vector<double> half(model.num_nodes(), std::numeric_limits<double>::infinity());
-  for (int e = 0; e < model.num_elements(); ++e)
-    for (int n : {model.elements()[e].n1, model.elements()[e].n2})
-      half[n] = std::min(half[n], 0.5 * model.section_of(e).contact_width());
+  const std::vector<double> half = plane_contact_distances(model);
   ContactStepEstimate est;
   const SceneLawInfo& info = scene_law(law);
   est.stiffness_key = info.reads("alpha_kgf")   ? "the penalty alpha_kgf"
@@ -344,6 +348,35 @@ inline void check_obstacles_clear(const SceneSpec& spec, const Model& model, con
     }
 }
 
+// The highest point of each item's contact at t = 0 above the floor (m): its nodes' heights plus their
+// contact distance against a plane (plane_contact_distances).
+inline std::vector<double> item_tops(const SceneSpec& spec, const Model& model, const std::vector<ItemInfo>& items) {
+  const std::vector<double> half = plane_contact_distances(model);
+  std::vector<double> tops;
+  for (const ItemInfo& it : items) {
+    double top = -std::numeric_limits<double>::infinity();
+    for (int n : model.body(it.body).nodes)
+      top = std::max(top, model.node(n).X.z() + (std::isfinite(half[n]) ? half[n] : 0.0));
+    tops.push_back(top - spec.table.floor_z);
+  }
+  return tops;
+}
+
+// An item reaching above the ceiling at t = 0 is an InputError naming both: the ceiling would push it
+// down through the floor's contact with energy from nowhere, as an obstacle through an item would.
+// Touching (to 1 um, as obstacle_clearance) is allowed.
+inline void check_ceiling_clear(const SceneSpec& spec, const Model& model, const std::vector<ItemInfo>& items) {
+  if (!spec.ceiling) return;
+  const std::vector<double> tops = item_tops(spec, model, items);
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (!(tops[i] > spec.ceiling->height + obstacle_clearance)) continue;
+    throw InputError(spec.source, 0, "ceiling.height",
+                     "item '" + items[i].name + "' (items[" + std::to_string(spec_item_index(spec, items[i])) +
+                         "]) reaches " + fmt(tops[i]) + " m, above the ceiling at " + fmt(spec.ceiling->height) +
+                         " m (heights above the table's floor); raise the ceiling or lower the item");
+  }
+}
+
 }  // namespace detail
 
 // A scene turned into a composed solver: the model, its items, the table motion and the simulation
@@ -376,6 +409,7 @@ struct SceneSimulation {
     std::vector<MeshObstacle> obstacles;
     for (std::size_t i = 0; i < spec.obstacles.size(); ++i) obstacles.push_back(detail::scene_obstacle(spec, i));
     detail::check_obstacles_clear(spec, *model, items, obstacles);
+    detail::check_ceiling_clear(spec, *model, items);
     for (auto& ob : obstacles) contact.add_obstacle(std::move(ob));
     contact.set_restraints(detail::scene_restraint_set(spec, *model, items, detail::scene_ceiling_z(spec)));
     switch (spec.integrator.scheme) {

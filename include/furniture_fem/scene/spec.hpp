@@ -1,7 +1,7 @@
 #pragma once
-// furniture_fem/scene/spec.hpp: what a run simulates, as plain data: the shake table and its walls, mesh
-// obstacles, the furniture items and where they stand, the ground motion, the contact law, the time
-// integration, and what to write out. Read from JSON by scene/reader.hpp (docs/scene/scene_file.md).
+// furniture_fem/scene/spec.hpp: what a run simulates, as plain data: the shake table, its walls and
+// ceiling, mesh obstacles, the furniture items and where they stand, the ground motion, the contact law,
+// the time integration, and what to write out. Read from JSON by scene/reader.hpp (docs/scene/scene_file.md).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -49,6 +49,12 @@ inline std::vector<WallSpec> default_walls(const TableSpec& t = {}) {
   return {WallSpec{"wall_minus_x", Vec3(-0.5 * t.size_x, 0, t.floor_z), Vec3::UnitX(), 2.5, t.size_y},
           WallSpec{"wall_plus_x", Vec3(0.5 * t.size_x, 0, t.floor_z), Vec3(-1, 0, 0), 2.5, t.size_y}};
 }
+
+// A rigid horizontal ceiling over the whole room, `height` (m) above the table's floor, facing down. Its
+// contact with the items takes the walls' parameters (docs/contact/contact.md, "The ceiling").
+struct CeilingSpec {
+  double height = 2.5;
+};
 
 // A rigid obstacle given by a triangle mesh file (STL, OBJ or OFF), placed like an item.
 struct ObstacleSpec {
@@ -297,6 +303,7 @@ struct SceneSpec {
   std::string name = "scene";
   TableSpec table;
   std::vector<WallSpec> walls = default_walls();
+  std::optional<CeilingSpec> ceiling;  // none by default
   std::vector<ObstacleSpec> obstacles;
   std::vector<ItemSpec> items;
   std::vector<RestraintSpec> restraints;

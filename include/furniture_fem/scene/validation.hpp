@@ -141,6 +141,9 @@ inline void validate(const SceneSpec& s) {
     fail("dt", "must not exceed duration (dt = " + detail::fmt(s.dt) + " s, duration = " + detail::fmt(s.duration) + " s)");
   if (s.ground_motion.level < 0) fail("ground_motion.level", "must not be negative (got " + detail::fmt(s.ground_motion.level) + ")");
   if (s.items.empty()) fail("items", "a scene needs at least one item");
+  if (s.ceiling && !(s.ceiling->height > 0 && s.ceiling->height <= scene_reach))  // a SceneSpec made in code
+    fail("ceiling.height", "must be positive, finite and at most " + detail::fmt(scene_reach) + " m (got " +
+                               detail::fmt(s.ceiling->height) + ")");
   if (s.contact.law.index >= contact_law_registry().size())
     fail("contact.law", "unknown contact law; expected one of: " + contact_law_registry().names());
   const SceneLawInfo& law = scene_law(s.contact.law);

@@ -70,6 +70,7 @@ inline nlohmann::json to_json(const SceneSpec& s) {
                           {"normal", detail::to_json_vec3(w.normal)},
                           {"height", w.height},
                           {"width", w.width}});
+  if (s.ceiling) j["ceiling"] = {{"height", s.ceiling->height}};  // a scene without one is written as before
   j["obstacles"] = json::array();
   for (const auto& o : s.obstacles)
     j["obstacles"].push_back({{"name", o.name},

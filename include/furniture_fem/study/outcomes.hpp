@@ -28,7 +28,7 @@ namespace furniture_fem {
 // One body's outcome (separated cabinets give two: "<item>/lower", "<item>/upper"): its final state as
 // the run reports it (scene/run_summary.hpp; written with final_state.json's keys) and the largest
 // magnitude over the run's steps of the summed contact force on the body from the floor, from the walls
-// and from other items (N).
+// and a ceiling together, and from other items and mesh obstacles (N).
 struct BodyOutcome : ItemFinalState {
   double floor_force_peak = 0, wall_force_peak = 0, item_force_peak = 0;
 };

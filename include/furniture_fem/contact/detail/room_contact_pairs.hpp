@@ -13,7 +13,8 @@ inline void RoomContact::end_of_step(const ContactView& view, Eigen::VectorXd& f
   if (!plane_applied_.empty()) {
     for (const auto& [n, w] : plane_applied_) f.template segment<6>(6 * n) -= w;
     std::erase_if(pair_forces_, [&](const PairForce& pf) {
-      return (pf.body_b == floor_id || pf.body_b == wall_id) && bodies_[pf.body_a].implicit;
+      const bool plane = pf.body_b == floor_id || pf.body_b == wall_id || pf.body_b == ceiling_id;
+      return plane && bodies_[pf.body_a].implicit;
     });
     active_ -= static_cast<int>(plane_applied_.size()) - restraints_applied_;  // restraints are not contacts
     plane_contacts(view, f, true);

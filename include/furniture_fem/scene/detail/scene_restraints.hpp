@@ -27,8 +27,11 @@ inline constexpr double bracket_reach = 0.15, strap_reach = 1.0, mat_reach = 0.0
 // A named point farther than this from every node of its item is not on the item (a chair's box corner).
 inline constexpr double restraint_point_tolerance = 0.1;
 
-// The ceiling's height above the table's origin, or none: the room has no ceiling yet.
-inline std::optional<double> scene_ceiling_z(const SceneSpec&) { return std::nullopt; }
+// The ceiling's height (z, the table's frame), or none without one.
+inline std::optional<double> scene_ceiling_z(const SceneSpec& s) {
+  if (!s.ceiling) return std::nullopt;
+  return s.table.floor_z + s.ceiling->height;
+}
 
 inline bool restraint_on_wall(RestraintKind k) { return k == RestraintKind::l_bracket || k == RestraintKind::strap; }
 

@@ -31,9 +31,11 @@ class ContactForcePeaks : public RunObserver {
     const int nb = run.model.num_bodies();
     sums_.assign(nb, {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
     for (const PairForce& p : run.sim.pair_forces()) {
-      const int kind = p.body_b == -1 ? 0 : p.body_b == -2 ? 1 : 2;  // floor, wall, item
+      // The floor; the walls and the ceiling (wall_force_peak_N); items and mesh obstacles.
+      const bool wall_or_ceiling = p.body_b == PairForce::wall_id || p.body_b == PairForce::ceiling_id;
+      const int kind = p.body_b == PairForce::floor_id ? 0 : wall_or_ceiling ? 1 : 2;
       if (p.body_a >= 0 && p.body_a < nb) sums_[p.body_a][kind] += p.force_on_a;
-      if (kind == 2 && p.body_b < nb) sums_[p.body_b][2] -= p.force_on_a;
+      if (p.body_b >= 0 && p.body_b < nb) sums_[p.body_b][2] -= p.force_on_a;  // an item's reaction
     }
     for (int b = 0; b < nb; ++b)
       for (int k = 0; k < 3; ++k) peaks_[b][k] = std::max(peaks_[b][k], sums_[b][k].norm());
