@@ -3,13 +3,13 @@
 # float-cast-overflow), -O1, in build-asan (docs/fuzzing.md). Usage: scripts/sanitize_tests.sh [TEST...]
 # TEST: a ctest name (a test group such as excitation or scene; corpus: the malformed-input corpus
 # through a sanitized furniture_quake; command_line: its exit codes, signals and resume), or "all"
-# (every test); default: excitation io, the input-facing groups that fit CI's budget (scene and
-# corpus take about 35 min to build here: docs/fuzzing.md). FFEM_SAN_OPT (default -O1) sets the
+# (every test); default: excitation io restraints, the input-facing groups and the restraints' laws (10 s
+# to build), those that fit CI's budget (scene and corpus take about 35 min to build here: docs/fuzzing.md). FFEM_SAN_OPT (default -O1) sets the
 # optimisation level; another level builds in its own folder (build-asan-O2 for -O2), for the long
 # groups (contact_dynamics: stopped after 38 min at -O1 without an end, 99 min at -O2).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-tests="${*:-excitation io}"
+tests="${*:-excitation io restraints}"
 pkgs="cmake make clang libclang-rt-14-dev libeigen3-dev zlib1g-dev libcgal-dev libboost-dev catch2 nlohmann-json3-dev libcli11-dev"
 bash scripts/install_packages.sh $pkgs
 san="-fsanitize=address,undefined,float-cast-overflow -fno-sanitize-recover=all"
