@@ -491,3 +491,28 @@ TEST_CASE("restraints are read, written back, and each bad value is named with i
 }
 
 }  // namespace restraint_scene_tests
+
+namespace restraint_scene_tests {
+
+TEST_CASE("a marker may name a point of its item's box, as a restraint does", "[scene][restraints][markers]") {
+  // "crate.top_front_left": no builder marker of a block has that name; the box's point (-W/2, -D/2, H)
+  // in the item frame, its nearest node the block's top front left corner. A name neither a marker nor a
+  // box point is an error listing both.
+  const Block c{0.3, 0.4, 0.9, 0.45, 40};
+  json j = tied_block(c, {{0.3, 0.0}, {1.3, 1.0}}, json::object(), 1.0);
+  j["outputs"]["markers"] = {"crate.top_front_left", "crate.cog"};
+  const SceneSpec spec = read(j);
+  Model model;
+  const auto items = build_scene(spec, model);
+  const ResolvedOutputs out = resolve_output_requests(spec, model, items);
+  REQUIRE(out.markers.size() == 2);
+  const Vec3 corner = items[0].to_world(Vec3(-0.5 * c.W, -0.5 * c.D, c.H));
+  CHECK(out.markers[0].node == nearest_node(model, items[0].body, corner));
+  CHECK((model.node(out.markers[0].node).X - corner).norm() < 0.01);  // the corner node, 5 mm inside each face
+  CHECK(out.markers[1].node == items[0].marker("cog")->node);
+  j["outputs"]["markers"] = {"crate.top_middle"};
+  CHECK_THAT(read_error(j), Contains("outputs.markers[0]") && Contains("has no marker \"top_middle\"") &&
+                               Contains("cog") && Contains("bottom_back_right"));
+}
+
+}  // namespace restraint_scene_tests

@@ -22,6 +22,7 @@
 #include <utility>
 #include <vector>
 
+#include "../furniture/named_points.hpp"
 #include "observer.hpp"
 #include "forecast.hpp"
 #include "observers.hpp"
@@ -51,6 +52,7 @@ inline ResolvedOutputs resolve_output_requests(const SceneSpec& spec, const Mode
     int node = -1;
     if (m.point) node = nearest_node(model, it.body, it.to_world(*m.point));
     else if (const Marker* mk = it.marker(m.marker)) node = mk->node;
+    else if (const auto local = named_point_local(it, m.marker)) node = nearest_node(model, it.body, it.to_world(*local));
     else throw InputError(spec.source, 0, key + ".marker", "item '" + m.item + "' has no marker '" + m.marker + "'");
     out.markers.push_back({m.name.empty() ? m.item + "." + m.marker : m.name, node});
   }

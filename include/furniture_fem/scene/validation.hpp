@@ -17,6 +17,7 @@
 #include "../core/model.hpp"
 #include "../core/step_length.hpp"
 #include "../excitation/known_records.hpp"
+#include "../furniture/named_points.hpp"
 #include "build.hpp"
 #include "item_parameters.hpp"
 #include "spec.hpp"
@@ -310,9 +311,9 @@ inline void validate(const SceneSpec& s) {
     const auto it = bodies.find(m.item);
     if (it == bodies.end())
       fail(path, "marker \"" + m.name + "\" is on no item: \"" + m.item + "\" is not one of: " + body_names());
-    if (!m.point && !it->second.marker(m.marker)) {
-      std::string list;
-      for (const auto& mk : it->second.markers) list += (list.empty() ? "" : ", ") + mk.name;
+    if (!m.point && !it->second.marker(m.marker) && !named_point_local(it->second, m.marker)) {
+      std::string list;  // its builder's markers, then its box's points (furniture/named_points.hpp)
+      for (const auto& name : named_point_names(it->second)) list += (list.empty() ? "" : ", ") + name;
       fail(path, "item \"" + m.item + "\" has no marker \"" + m.marker + "\"; its markers: " + list);
     }
   }
