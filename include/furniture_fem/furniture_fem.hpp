@@ -6,6 +6,7 @@
 #include "contact.hpp"
 #include "excitation.hpp"
 #include "furniture.hpp"
+#include "harm.hpp"
 #include "io.hpp"
 #include "figures.hpp"
 #include "scene.hpp"

@@ -28,6 +28,7 @@
 #include "../core/step_report.hpp"
 #include "../excitation/excitation.hpp"
 #include "../furniture/furniture.hpp"
+#include "../harm/item_box.hpp"
 #include "../restraints/restraint_set.hpp"
 #include "run_summary.hpp"
 #include "spec.hpp"
@@ -209,6 +210,17 @@ inline double tilt_of(const Mat3& Q) {
 }
 
 }  // namespace detail
+
+// The item's outer box where its body is now (harm/item_box.hpp): its best rigid motion applied to the
+// box as placed.
+inline OrientedBox current_item_box(const SimulationView& sim, const Model& model, const ItemInfo& item) {
+  Vec3 shift;
+  const Mat3 Q = detail::body_rotation_of(sim, model, item.body, &shift);
+  Vec3 Xc = Vec3::Zero();
+  for (int n : model.body(item.body).nodes) Xc += model.node(n).X;
+  Xc /= double(model.body(item.body).nodes.size());
+  return item_box(item, Q, Xc, Xc + shift);
+}
 
 // Angle of a body's vertical axis from the vertical (deg), from its best rigid rotation.
 inline double body_tilt_deg(const SimulationView& sim, const Model& model, int body) {
