@@ -34,6 +34,8 @@ TEST_CASE("A placed box stands on its footprint, its outline is its footprint", 
   CHECK(polygon_area(outline) == Approx(0.9 * 0.4).epsilon(1e-12));  // counter-clockwise: positive
   CHECK(b.distance(Vec3(1.0, 2.0 - 0.2 - 0.3, 1.0)) == Approx(0.3).epsilon(1e-12));  // 0.3 m in front
   CHECK(b.distance(Vec3(1.2, 2.1, 0.5)) == 0.0);                                     // inside
+  CHECK(b.signed_distance(Vec3(1.2, 2.1, 0.5)) == Approx(-0.1).epsilon(1e-12));      // 0.1 m below the back face
+  CHECK(b.signed_distance(Vec3(1.0, 2.0 - 0.2 - 0.3, 1.0)) == Approx(0.3).epsilon(1e-12));
 }
 
 TEST_CASE("A box tipped forward by 90 degrees about its front bottom edge lies on its front face",

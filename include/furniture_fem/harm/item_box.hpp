@@ -39,6 +39,11 @@ struct OrientedBox {
   }
   // Distance from p to the box; 0 inside it.
   double distance(const Vec3& p) const { return (p - closest_point(p)).norm(); }
+  // The same outside; inside, minus the depth below the nearest face (convex in p, as the box is).
+  double signed_distance(const Vec3& p) const {
+    const Vec3 depth = half - (axes.transpose() * (p - centre)).cwiseAbs();
+    return depth.minCoeff() >= 0 ? -depth.minCoeff() : distance(p);
+  }
 };
 
 // The item's box as placed (at t = 0, before any motion).

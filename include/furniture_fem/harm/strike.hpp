@@ -1,0 +1,108 @@
+#pragma once
+// furniture_fem/harm/strike.hpp: an item striking an occupant (docs/harm/harm.md, "Strikes"), and the
+// verdict on it against stated thresholds.
+//
+//   Strike            who, what, when, how fast, with what energy, and the impact form's measures
+//   StrikeThresholds  the thresholds and where they come from
+//   StrikeWatch       one occupant's zone against one item over a run: finds each strike's onset
+//                     between two steps, drives the zone's impact form through it, closes it
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "impact_form.hpp"
+#include "occupant.hpp"
+
+namespace furniture_fem {
+
+struct Strike {
+  std::string occupant, item;
+  OccupantZone zone = OccupantZone::head;
+  double time = 0;              // s, the onset (interpolated between the run's steps)
+  double duration = 0;          // s, onset to the form's separation
+  double relative_speed = 0;    // m/s, the item's intrusion rate at the onset (the floor is the occupant's frame)
+  double kinetic_energy = 0;    // J, the whole item's at the onset
+  double peak_force = 0;        // N, on the zone's impact form
+  double impulse = 0;           // N s, given to the form
+  double hic15 = 0;             // the head form's HIC15 (head strikes; 0 for the body)
+  std::vector<std::string> exceeded;  // the thresholds it reached, by name ("hic15", "head_force", "energy")
+  bool serious() const { return !exceeded.empty(); }
+};
+
+// The thresholds a strike is judged against (docs/harm/harm.md gives the sources and what each means).
+struct StrikeThresholds {
+  double hic15 = 700.0;       // 49 CFR 571.208 S6.2(b): HIC15 at most 700 (about a 5 % risk of AIS 4+, Mertz 1997)
+  double head_force = 4500.0; // N: the lowest skull fracture load of Yoganandan et al. 1995 (4.5 to 14.1 kN)
+  double energy = 79.0;       // J: the DDESB's hazardous-fragment energy, 58 ft-lbf (TP-12), head or body
+};
+
+// The names of the thresholds a strike reaches.
+inline std::vector<std::string> exceeded_thresholds(const Strike& s, const StrikeThresholds& t) {
+  std::vector<std::string> out;
+  if (s.zone == OccupantZone::head && s.hic15 >= t.hic15) out.push_back("hic15");
+  if (s.zone == OccupantZone::head && s.peak_force >= t.head_force) out.push_back("head_force");
+  if (s.kinetic_energy >= t.energy) out.push_back("energy");
+  return out;
+}
+
+// One zone of one occupant against one item: call observe() after every step with the item's box and
+// kinetic energy; finished strikes are returned by it as they end. A strike lasting longer than
+// `longest` (the form never separated: the item keeps pushing) is closed there.
+class StrikeWatch {
+ public:
+  StrikeWatch(const Occupant& o, OccupantZone z, std::string item, StrikeThresholds t = {})
+      : occupant_(o), zone_(z), item_(std::move(item)), thresholds_(t) {}
+
+  std::optional<Strike> observe(double t, const OrientedBox& box, double item_kinetic_energy) {
+    const double d = zone_intrusion(occupant_, zone_, box);
+    std::optional<Strike> done;
+    if (form_) {
+      form_->advance(d_prev_, d, t - t_prev_);
+      const double rate = (d - d_prev_) / (t - t_prev_);
+      if (form_->separated(rate) || t - strike_.time > longest) done = close();
+    } else if (d > 0 && d_prev_ <= 0 && t_prev_ >= 0 && t > t_prev_) {
+      open(t, d, item_kinetic_energy);
+    }
+    d_prev_ = d, t_prev_ = t, ke_prev_ = item_kinetic_energy;
+    return done;
+  }
+  // The strike under way when the run ends, closed there; none if there is none.
+  std::optional<Strike> finish() { return form_ ? std::optional<Strike>(close()) : std::nullopt; }
+  bool touching() const { return d_prev_ > 0; }  // the item is in the zone after the last step
+  double intrusion() const { return d_prev_; }   // m
+
+  static constexpr double longest = 0.5;  // s
+
+ private:
+  Occupant occupant_;
+  OccupantZone zone_;
+  std::string item_;
+  StrikeThresholds thresholds_;
+  double d_prev_ = 0, t_prev_ = -1, ke_prev_ = 0;
+  std::optional<FormStrike> form_;
+  Strike strike_;
+
+  void open(double t, double d, double ke) {
+    const double frac = -d_prev_ / (d - d_prev_);  // where between the steps the item reached the zone
+    strike_ = Strike{};
+    strike_.occupant = occupant_.name;
+    strike_.item = item_;
+    strike_.zone = zone_;
+    strike_.time = t_prev_ + frac * (t - t_prev_);
+    strike_.relative_speed = (d - d_prev_) / (t - t_prev_);
+    strike_.kinetic_energy = ke_prev_ + frac * (ke - ke_prev_);
+    form_.emplace(occupant_.form(zone_));
+    form_->advance(0.0, d, t - strike_.time);
+  }
+  Strike close() {
+    strike_.duration = form_->duration();
+    strike_.peak_force = form_->peak_force();
+    strike_.impulse = form_->impulse();
+    if (zone_ == OccupantZone::head) strike_.hic15 = form_->hic(0.015);
+    strike_.exceeded = exceeded_thresholds(strike_, thresholds_);
+    form_.reset();
+    return strike_;
+  }
+};
+
+}  // namespace furniture_fem
