@@ -10,24 +10,11 @@ study.json; writes Markdown to stdout and restraint_outcomes.csv beside the reco
 import csv
 import glob
 import json
-import math
 import os
 import sys
 from collections import Counter, defaultdict
 
-
-def wilson(k, n, z=1.959963984540054):
-    if n == 0:
-        return (0.0, 1.0)
-    p = k / n
-    d = 1 + z * z / n
-    c = p + z * z / (2 * n)
-    h = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
-    return (max(0.0, (c - h) / d), min(1.0, (c + h) / d))
-
-
-def fallen(body):
-    return body["max_tilt_deg"] > 60 or body["lift_m"] < -0.05
+from study_tables import fallen, wilson
 
 
 def main(folder):

@@ -193,6 +193,11 @@ int report(const SceneSpec& spec, const RunSummary& s) {
     else
       std::printf(": held\n");
   }
+  for (const auto& o : s.occupants) {
+    if (o.strikes.empty()) std::printf("  occupant %-17s not struck\n", o.name.c_str());
+    for (const auto& st : o.strikes) std::printf("  occupant %-17s %s\n", o.name.c_str(), strike_sentence(st).c_str());
+    for (const auto& item : o.in_contact_at_end) std::printf("  occupant %-17s in contact with %s at the end\n", o.name.c_str(), item.c_str());
+  }
   std::printf("  results in %s\n", s.out_dir.c_str());
   // A stopped run is not a complete one: scripts see 130 (the shell's code for Ctrl-C).
   if (s.status == "stopped") return exit_interrupted;

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <sstream>
 
+#include <furniture_fem/core/checkpoint.hpp>
 #include <furniture_fem/harm/strike.hpp>
 
 using namespace furniture_fem;
@@ -151,7 +152,7 @@ TEST_CASE("A box passing beside a head strikes nothing; one resting in the zone 
   CHECK(strikes_beside == 0);
   CHECK(!beside.touching());
   CHECK(strikes_onto == 1);
-  CHECK(onto.touching());  // it came to rest 0.1 m into the head zone: pinned
+  CHECK(onto.touching());  // it came to rest 0.1 m into the head zone: in contact at the end
   CHECK(onto.intrusion() == Approx(0.1).epsilon(1e-9));  // its face 0.1 m into the 0.1 m head: at the centre
 }
 
@@ -174,4 +175,38 @@ TEST_CASE("A capsule's distance to a box", "[harm][geometry]") {
   const OrientedBox above = cube_at(Vec3(0.0, 0.0, 2.5), 0.25);  // bottom face at z = 2.25
   CHECK(zone_intrusion(o, OccupantZone::head, above) == Approx(o.head_radius - (2.25 - o.head_centre().z())).epsilon(1e-9));
   CHECK(zone_intrusion(o, OccupantZone::body, above) == Approx(o.body_radius - (2.25 - o.body_top().z())).epsilon(1e-9));
+}
+
+TEST_CASE("A watch saved in the middle of a strike and loaded into a new one finishes it as the first would",
+          "[harm][strike][checkpoint]") {
+  Occupant o;
+  o.name = "reader";
+  const Vec3 head = o.head_centre();
+  const auto box_at = [&](double t) { return cube_at(Vec3(head.x(), head.y(), head.z() + o.head_radius + 0.5 + 0.2 - 0.5 * g * t * t), 0.2); };
+  const double dt = 1e-3;
+  StrikeWatch whole(o, OccupantZone::head, "box");
+  std::optional<Strike> expected;
+  for (int i = 0; i < 2000 && !expected; ++i) expected = whole.observe(i * dt, box_at(i * dt), 1.0 * i);
+  REQUIRE(expected);
+  // Again, saved two steps after the onset (the form in contact) and resumed in a new watch.
+  const int onset_step = static_cast<int>(std::ceil(expected->time / dt));
+  StrikeWatch first(o, OccupantZone::head, "box");
+  for (int i = 0; i <= onset_step + 1; ++i) REQUIRE_FALSE(first.observe(i * dt, box_at(i * dt), 1.0 * i));
+  StateWriter w;
+  w(first);
+  const std::string bytes = w.bytes();
+  StrikeWatch second(o, OccupantZone::head, "box");
+  StateReader r(bytes, "watch");
+  r(second);
+  r.finish();
+  std::optional<Strike> resumed;
+  for (int i = onset_step + 2; i < 2000 && !resumed; ++i) resumed = second.observe(i * dt, box_at(i * dt), 1.0 * i);
+  REQUIRE(resumed);
+  CHECK(resumed->time == expected->time);
+  CHECK(resumed->kinetic_energy == expected->kinetic_energy);
+  CHECK(resumed->peak_force == expected->peak_force);
+  CHECK(resumed->impulse == expected->impulse);
+  CHECK(resumed->hic15 == expected->hic15);
+  CHECK(resumed->duration == expected->duration);
+  CHECK(resumed->exceeded == expected->exceeded);
 }

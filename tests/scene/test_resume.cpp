@@ -81,7 +81,7 @@ SceneSpec room(int variant) {
     spec.contact.implicit = ImplicitContact::all;
     spec.duration = 0.1;
   }
-  // Variant 7: variant 3 with restraints: the tall cabinet's two weak brackets into the wall board (they
+  // Variant 7: variant 3 with restraints and occupants: the tall cabinet's two weak brackets into the wall board (they
   // yield and pull out in the run) and a slack strap on the upper cabinet; their histories, regimes and
   // break times come back from the checkpoint (restraints.csv, restraints.png, summary.json).
   if (variant == 7) {
@@ -104,6 +104,17 @@ SceneSpec room(int variant) {
     strap.wall = "wall_plus_x";
     strap.values = {{"slack", 0.002}};
     spec.restraints.push_back(strap);
+    // And two occupants: the watches' last intrusions and a strike under way come back from the
+    // checkpoint (strikes.csv, summary.json's occupants).
+    Occupant clerk;
+    clerk.name = "clerk";
+    clerk.position = Vec2(-0.1, 0.0);
+    clerk.posture = Posture::seated;
+    clerk.height = 1.3, clerk.body_radius = 0.3;
+    Occupant visitor;
+    visitor.name = "visitor";
+    visitor.position = Vec2(1.22, -0.5);
+    spec.occupants = {clerk, visitor};
     spec.outputs.figures = true;
   }
   return spec;

@@ -22,6 +22,9 @@ namespace furniture_fem {
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 
+// m/s^2 per g (the PEER/NGA convention; a head injury criterion takes accelerations in g too).
+inline constexpr double standard_gravity = 9.80665;
+
 namespace detail {
 inline std::string fmt(double v) {
   std::ostringstream os;

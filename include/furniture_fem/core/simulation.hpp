@@ -434,6 +434,10 @@ class Simulation {
     return -1;
   }
   double nodal_mass(int n) const { return mass_[6 * n]; }
+  // Kinetic energy (J) of node n's lumped mass and rotary inertia: a body's is the sum over its nodes.
+  double kinetic_energy(int n) const {
+    return 0.5 * (mass_[6 * n] * v_.segment<3>(6 * n).squaredNorm() + v_.segment<3>(6 * n + 3).dot(rotary_momentum(n)));
+  }
   double nodal_rotary_inertia(int n) const { return mass_[6 * n + 3]; }
   // A node's rotary inertia tensor (world axes) as the dynamics use it: on a rigid body the initial
   // tensor turned with the node, on a flexible one the lumped diagonal in world axes.
@@ -478,9 +482,7 @@ class Simulation {
     place_unplaced_nodes();
     EnergyLedger e = ledger_;
     e.kinetic = 0;
-    for (int n = 0; n < model_.num_nodes(); ++n)
-      e.kinetic += 0.5 * (mass_[6 * n] * v_.segment<3>(6 * n).squaredNorm() +
-                          v_.segment<3>(6 * n + 3).dot(rotary_momentum(n)));
+    for (int n = 0; n < model_.num_nodes(); ++n) e.kinetic += kinetic_energy(n);
     e.gravity_potential = 0;
     for (int n = 0; n < model_.num_nodes(); ++n) e.gravity_potential -= mass_[6 * n] * opt_.gravity.dot(x_[n]);
     e.strain = 0;

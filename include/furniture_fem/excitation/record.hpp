@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "../core/errors.hpp"
+#include "../core/model.hpp"  // standard_gravity
 
 namespace furniture_fem {
 
-inline constexpr double standard_gravity = 9.80665;  // m/s^2 per g (the PEER/NGA convention)
 
 // ---------------------------------------------------------------------------------------------
 // Records

@@ -1,6 +1,6 @@
 #pragma once
 // furniture_fem/harm/impact_form.hpp: what an item's strike does to a person's head or body, measured on
-// an impact form (docs/harm/harm.md, "Strikes"): a free mass m (a head form: 4.5 kg, the Hybrid III
+// an impact form (docs/harm/occupants.md, "Strikes"): a free mass m (a head form: 4.5 kg, the Hybrid III
 // head) at rest, pushed along the strike's normal by a contact spring k as the item intrudes into the
 // zone. The item's intrusion d(t) comes from the run; the form does not push back (an occupant is a
 // sensor), so the item moves as if unobstructed: for an item of effective mass M at the contact the
@@ -13,11 +13,12 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <type_traits>
 #include <vector>
 
-namespace furniture_fem {
+#include "../core/model.hpp"  // standard_gravity
 
-inline constexpr double standard_gravity = 9.80665;  // m/s^2: HIC takes the acceleration in g
+namespace furniture_fem {
 
 struct ImpactForm {
   double mass = 4.5;         // kg
@@ -80,6 +81,13 @@ class FormStrike {
   double duration() const { return contact_end_; }  // s from the onset to the last sub-step in contact
   // HIC over windows up to `window` of the form's acceleration (in g).
   double hic(double window = 0.015) const { return head_injury_criterion(t_, a_g_, window); }
+
+  // Checkpoints (core/checkpoint.hpp): a run resumed mid-strike carries on with the same form.
+  template <class Self, class Archive>
+    requires std::is_same_v<std::remove_const_t<Self>, FormStrike>
+  friend void transfer_state(Self& f, Archive& ar) {
+    ar(f.form_.mass, f.form_.stiffness, f.h_max_, f.x_, f.v_, f.impulse_, f.peak_, f.intrusion_, f.contact_end_, f.t_, f.a_g_);
+  }
 
  private:
   ImpactForm form_;

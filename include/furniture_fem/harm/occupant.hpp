@@ -1,5 +1,5 @@
 #pragma once
-// furniture_fem/harm/occupant.hpp: a person in the room (docs/harm/harm.md, "Occupants"): a body-sized
+// furniture_fem/harm/occupant.hpp: a person in the room (docs/harm/occupants.md): a body-sized
 // vertical cylinder standing on the floor with a head on top, fixed to the floor (the table frame). An
 // occupant is a sensor: it records what reaches it and does not push the furniture back.
 //
@@ -40,7 +40,7 @@ struct Occupant {
   double height = 1.70;          // m, floor to the top of the head
   double body_radius = 0.20;     // m
   double head_radius = 0.10;     // m
-  ImpactForm head{4.5, 1.0e6};   // Hybrid III head's mass; a skull's stiffness (docs/harm/harm.md)
+  ImpactForm head{4.5, 1.0e6};   // Hybrid III head's mass; a skull's stiffness (docs/harm/occupants.md)
   ImpactForm body{35.0, 1.0e5};  // an adult's trunk; a chosen stiffness (its verdicts do not use it)
 
   Vec3 head_centre() const { return Vec3(position.x(), position.y(), floor_z + height - head_radius); }

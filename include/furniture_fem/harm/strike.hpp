@@ -1,13 +1,16 @@
 #pragma once
-// furniture_fem/harm/strike.hpp: an item striking an occupant (docs/harm/harm.md, "Strikes"), and the
+// furniture_fem/harm/strike.hpp: an item striking an occupant (docs/harm/occupants.md, "Strikes"), and the
 // verdict on it against stated thresholds.
 //
 //   Strike            who, what, when, how fast, with what energy, and the impact form's measures
 //   StrikeThresholds  the thresholds and where they come from
+//   strike_sentence   a strike in words, for a final print
 //   StrikeWatch       one occupant's zone against one item over a run: finds each strike's onset
 //                     between two steps, drives the zone's impact form through it, closes it
+#include <cstdio>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "impact_form.hpp"
@@ -27,9 +30,16 @@ struct Strike {
   double hic15 = 0;             // the head form's HIC15 (head strikes; 0 for the body)
   std::vector<std::string> exceeded;  // the thresholds it reached, by name ("hic15", "head_force", "energy")
   bool serious() const { return !exceeded.empty(); }
+
+  template <class Self, class Archive>
+    requires std::is_same_v<std::remove_const_t<Self>, Strike>
+  friend void transfer_state(Self& s, Archive& ar) {
+    ar(s.occupant, s.item, s.zone, s.time, s.duration, s.relative_speed, s.kinetic_energy, s.peak_force, s.impulse,
+       s.hic15, s.exceeded);
+  }
 };
 
-// The thresholds a strike is judged against (docs/harm/harm.md gives the sources and what each means).
+// The thresholds a strike is judged against (docs/harm/occupants.md gives the sources and what each means).
 struct StrikeThresholds {
   double hic15 = 700.0;       // 49 CFR 571.208 S6.2(b): HIC15 at most 700 (about a 5 % risk of AIS 4+, Mertz 1997)
   double head_force = 4500.0; // N: the lowest skull fracture load of Yoganandan et al. 1995 (4.5 to 14.1 kN)
@@ -43,6 +53,23 @@ inline std::vector<std::string> exceeded_thresholds(const Strike& s, const Strik
   if (s.zone == OccupantZone::head && s.peak_force >= t.head_force) out.push_back("head_force");
   if (s.kinetic_energy >= t.energy) out.push_back("energy");
   return out;
+}
+
+// A sentence for the final print: "struck on the head by tall_cabinet at 4.600 s (3.13 m/s, 98.1 J,
+// 6.64 kN, HIC15 812: above hic15, head_force, energy)".
+inline std::string strike_sentence(const Strike& s) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "struck on the %s by %s at %.3f s (%.2f m/s, %.1f J, %.2f kN", std::string(to_string(s.zone)).c_str(),
+                s.item.c_str(), s.time, s.relative_speed, s.kinetic_energy, s.peak_force / 1000.0);
+  std::string text = buf;
+  if (s.zone == OccupantZone::head) {
+    std::snprintf(buf, sizeof buf, ", HIC15 %.0f", s.hic15);
+    text += buf;
+  }
+  if (s.exceeded.empty()) return text + ": below every threshold)";
+  text += ": above ";
+  for (std::size_t i = 0; i < s.exceeded.size(); ++i) text += (i ? ", " : "") + s.exceeded[i];
+  return text + ")";
 }
 
 // One zone of one occupant against one item: call observe() after every step with the item's box and
@@ -72,6 +99,20 @@ class StrikeWatch {
   double intrusion() const { return d_prev_; }   // m
 
   static constexpr double longest = 0.5;  // s
+
+  // Checkpoints: the last step's intrusion and energy, and the strike under way with its form.
+  template <class Self, class Archive>
+    requires std::is_same_v<std::remove_const_t<Self>, StrikeWatch>
+  friend void transfer_state(Self& w, Archive& ar) {
+    ar(w.d_prev_, w.t_prev_, w.ke_prev_, w.strike_);
+    bool striking = w.form_.has_value();
+    ar(striking);
+    if constexpr (!std::is_const_v<Self>) {
+      if (striking && !w.form_) w.form_.emplace(w.occupant_.form(w.zone_));
+      if (!striking) w.form_.reset();
+    }
+    if (striking) ar(*w.form_);
+  }
 
  private:
   Occupant occupant_;

@@ -48,6 +48,7 @@ class SimulationView {
   virtual Vec6 velocity(int node) const = 0;
   virtual Vec6 acceleration(int node) const = 0;         // m/s^2, rad/s^2, relative to the table
   virtual double nodal_mass(int node) const = 0;         // kg
+  virtual double kinetic_energy(int node) const = 0;     // J, its mass's and rotary inertia's
   virtual SectionForces section_forces(int element) const = 0;
   virtual EnergyLedger energy() const = 0;               // J; costs a sweep over the elements
   // Contact force on body_a from body_b, summed per pair, in the last contact evaluation (body_b may be

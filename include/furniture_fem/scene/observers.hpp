@@ -12,6 +12,8 @@
 //   InputMotionHistory     input_motion.csv                              files
 //   RestraintOutcomes      each restraint's peak and break -> RunSummary::restraints   restraints
 //   RestraintHistory       restraints.csv, restraints.png                files, restraints (restraint_observers.hpp)
+//   OccupantStrikes        each strike on an occupant -> RunSummary::occupants, strikes.csv   occupants
+//                                                                        (occupant_observers.hpp)
 //   VtuSeries              room.pvd, vtu/room_<step>.vtu                 files, outputs.vtu_every > 0
 //   FinalStateFile         final_state.json                              files
 //   SummaryFile            summary.json                                  files
@@ -43,6 +45,7 @@
 #include "../io/vtk.hpp"
 #include "contact_force_history.hpp"
 #include "observer.hpp"
+#include "occupant_observers.hpp"
 #include "restraint_observers.hpp"
 #include "row_history.hpp"
 #include "writer.hpp"
@@ -640,6 +643,7 @@ class SummaryFile : public RunObserver {
         {"restraints", restraint_outcomes_json(sum.restraints)},
         {"eigen_version", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
                               std::to_string(EIGEN_MINOR_VERSION)}};
+    if (!sum.occupants.empty()) summary["occupants"] = occupant_outcomes_json(sum.occupants);  // only with occupants
     if (ground) summary["floor_motion_peak_m_s2"] = {run.motion.peaks().x(), run.motion.peaks().y(), run.motion.peaks().z()};
     detail::write_text(run.out_dir + "/summary.json", summary.dump(2) + "\n");
   }
@@ -838,6 +842,7 @@ inline std::vector<std::unique_ptr<RunObserver>> standard_observers(const RunVie
   list.push_back(std::make_unique<SectionPeaks>());
   list.push_back(std::make_unique<EnergyCheck>());
   if (!run.spec.restraints.empty()) list.push_back(std::make_unique<RestraintOutcomes>());
+  if (!run.spec.occupants.empty()) list.push_back(std::make_unique<OccupantStrikes>());
   if (run.out_dir.empty()) return list;
   list.push_back(std::make_unique<MarkerHistory>());
   list.push_back(std::make_unique<SectionalForceHistory>());

@@ -28,6 +28,7 @@
 #include "detail/scene_building.hpp"
 #include "detail/scene_json.hpp"
 #include "detail/scene_names.hpp"
+#include "detail/scene_occupants.hpp"
 #include "detail/scene_restraints.hpp"
 #undef FURNITURE_FEM_SCENE_INTERNAL
 
@@ -265,8 +266,8 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
   SceneSpec s;
   s.source = source;
   const ObjectReader r(j, "", source);
-  r.allow_only({"name", "table", "walls", "ceiling", "obstacles", "items", "restraints", "ground_motion", "contact",
-                "integrator", "solver", "refresh_every", "duration", "dt", "allow_coarse_dt", "outputs"});
+  r.allow_only({"name", "table", "walls", "ceiling", "obstacles", "items", "restraints", "occupants",
+                "strike_thresholds", "ground_motion", "contact", "integrator", "solver", "refresh_every", "duration", "dt", "allow_coarse_dt", "outputs"});
   s.name = r.string("name", s.name);
 
   if (r.has("table")) {
@@ -412,6 +413,11 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
     if (const auto problem = detail::restraint_problem(s.restraints.back(), s))
       r.fail(path + "." + problem->first, problem->second);
   });
+  r.array("occupants", [&](const nlohmann::json& v, const std::string& path) {
+    s.occupants.push_back(detail::read_occupant(v, path, source, s.occupants.size(), s));
+    if (const auto problem = detail::occupant_problem(s.occupants.back(), s)) r.fail(path + "." + problem->first, problem->second);
+  });
+  if (r.has("strike_thresholds")) s.strike_thresholds = detail::read_strike_thresholds(r.object("strike_thresholds"));
   s.allow_coarse_dt = r.boolean("allow_coarse_dt", s.allow_coarse_dt);
 
   if (r.has("outputs")) {

@@ -7,6 +7,7 @@
 // Plain data, apart from the simulation and the contact (observer.hpp has the observers' interface):
 // a program that only runs scenes (scene/run_scene.hpp) compiles these and not the solver.
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <optional>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "../core/model.hpp"
+#include "../harm/strike.hpp"
 #include "../io/vtk.hpp"
 
 namespace furniture_fem {
@@ -144,6 +146,16 @@ struct RestraintOutcome {
   double stored = 0;       // J: elastic energy it holds at the end
 };
 
+// What the items did to an occupant (scene/occupant_observers.hpp; docs/harm/occupants.md).
+struct OccupantOutcome {
+  std::string name;
+  std::vector<Strike> strikes;         // by onset time
+  std::vector<std::string> in_contact_at_end;  // the items in one of its zones at the end (leaning on, lying on)
+  bool seriously_struck() const {
+    return std::any_of(strikes.begin(), strikes.end(), [](const Strike& s) { return s.serious(); });
+  }
+};
+
 struct RunSummary {
   std::string status = "completed";  // completed, stopped, diverged
   std::string diagnosis;             // why it stopped; for a completed run, empty or an energy-loss warning
@@ -170,6 +182,7 @@ struct RunSummary {
   std::vector<ItemFinalState> items;
   std::vector<SectionForcePeak> section_peaks;  // one per outputs.sectional_forces request
   std::vector<RestraintOutcome> restraints;     // one per restraint, in the scene's order
+  std::vector<OccupantOutcome> occupants;       // one per occupant, in the scene's order
   EnergyVerdict energy;                         // the energy ledger's verdict
   std::string out_dir;  // empty when the run wrote no files (write_files false, or stopped before it was built)
   // The factor ground_motion.scale_to applied to the record (1 without a target); `level` multiplies after.

@@ -303,6 +303,7 @@ class LastStepView final : public SimulationView {
   Vec6 velocity(int n) const override { return now_.v.segment<6>(6 * n); }
   Vec6 acceleration(int n) const override { return now_.a.segment<6>(6 * n); }
   double nodal_mass(int n) const override { return sim_.nodal_mass(n); }
+  double kinetic_energy(int n) const override { return sim_.kinetic_energy(n); }
   SectionForces section_forces(int e) const override {
     for (const auto& [element, f] : sections_)
       if (element == e) return f;

@@ -52,6 +52,7 @@ class SimulationViewOf final : public SteppedSimulation {
   Vec6 velocity(int n) const override { return sim_.velocity(n); }
   Vec6 acceleration(int n) const override { return sim_.acceleration(n); }
   double nodal_mass(int n) const override { return sim_.nodal_mass(n); }
+  double kinetic_energy(int n) const override { return sim_.kinetic_energy(n); }
   SectionForces section_forces(int e) const override { return sim_.section_forces(e); }
   EnergyLedger energy() const override { return sim_.energy(); }
   const std::vector<PairForce>& pair_forces() const override { return sim_.contact_model().pair_forces(); }

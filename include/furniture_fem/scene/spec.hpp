@@ -15,6 +15,7 @@
 
 #include "../core/model.hpp"
 #include "../furniture/furniture.hpp"
+#include "../harm/strike.hpp"
 #include "../restraints/restraint.hpp"
 
 namespace furniture_fem {
@@ -307,6 +308,10 @@ struct SceneSpec {
   std::vector<ObstacleSpec> obstacles;
   std::vector<ItemSpec> items;
   std::vector<RestraintSpec> restraints;
+  // People in the room (docs/harm/occupants.md): sensors that record the items' strikes, judged against
+  // strike_thresholds.
+  std::vector<Occupant> occupants;
+  StrikeThresholds strike_thresholds;
   GroundMotionSpec ground_motion;
   ContactSpec contact;
   IntegratorSpec integrator;

@@ -24,6 +24,7 @@
 
 #define FURNITURE_FEM_SCENE_INTERNAL
 #include "detail/scene_building.hpp"
+#include "detail/scene_occupants.hpp"
 #include "detail/scene_restraints.hpp"
 #include "detail/scene_names.hpp"
 #undef FURNITURE_FEM_SCENE_INTERNAL
@@ -343,6 +344,20 @@ inline void validate(const SceneSpec& s) {
   std::vector<ItemInfo> built;
   for (const auto& [name, info] : bodies) built.push_back(info);
   detail::scene_restraint_set(s, scratch, built, detail::scene_ceiling_z(s));  // each point, anchor and reach
+  std::set<std::string> occupant_names;  // named in strikes and the summary
+  for (size_t k = 0; k < s.occupants.size(); ++k) {
+    const Occupant& o = s.occupants[k];
+    const std::string path = "occupants[" + std::to_string(k) + "]";
+    if (const auto why = detail::name_problem(o.name); !why.empty()) fail(path + ".name", why);
+    if (!occupant_names.insert(o.name).second) fail(path + ".name", "duplicate occupant name \"" + o.name + "\"");
+    if (const auto problem = detail::occupant_problem(o, s)) fail(path + "." + problem->first, problem->second);
+    // A person standing inside an item at the start would be struck by it at t = 0, unseen.
+    for (const ItemInfo& item : built)
+      for (OccupantZone z : {OccupantZone::head, OccupantZone::body})
+        if (zone_intrusion(o, z, placed_box(item)) > 0)
+          fail(path + ".position", "occupant '" + o.name + "': the " + std::string(to_string(z)) + " is inside item '" +
+                                       item.name + "' where it stands at the start");
+  }
 }
 
 }  // namespace furniture_fem

@@ -13,6 +13,7 @@
 
 #define FURNITURE_FEM_SCENE_INTERNAL
 #include "detail/scene_building.hpp"
+#include "detail/scene_occupants.hpp"
 #include "detail/scene_restraints.hpp"
 #include "detail/scene_json.hpp"
 #include "detail/scene_names.hpp"
@@ -103,6 +104,11 @@ inline nlohmann::json to_json(const SceneSpec& s) {
   if (!s.restraints.empty()) {  // written when there are some: scene.json without them unchanged
     j["restraints"] = json::array();
     for (const auto& r : s.restraints) j["restraints"].push_back(detail::restraint_json(r));
+  }
+  if (!s.occupants.empty()) {  // written when there are some, as restraints
+    j["occupants"] = json::array();
+    for (const auto& o : s.occupants) j["occupants"].push_back(detail::occupant_json(o));
+    j["strike_thresholds"] = detail::strike_thresholds_json(s.strike_thresholds);
   }
   j["ground_motion"] = detail::ground_motion_json(s.ground_motion);
   json contact = {{"law", std::string(scene_law(s.contact.law).name)},
