@@ -18,7 +18,8 @@ from study_tables import fallen, wilson
 
 
 COLUMNS = [("struck", "an occupant struck"), ("seriously", "struck seriously"),
-           ("head", "struck on the head"), ("exit_blocked", "an exit blocked at the end"),
+           ("head", "struck on the head"), ("exit_blocked_ever", "an exit blocked at some time"),
+           ("exit_blocked", "an exit blocked at the end"),
            ("fell", "an item fell")]
 
 
@@ -35,7 +36,8 @@ def count(folder):
         c["struck"] += any(o["struck"] for o in people)
         c["seriously"] += any(o["seriously"] for o in people)
         c["head"] += any(s["zone"] == "head" for o in people for s in o["strikes"])
-        c["exit_blocked"] += any(e.get("blocked_at_end", False) for e in r.get("exits", []))
+        c["exit_blocked_ever"] += any(e["first_blocked_at_s"] is not None for e in r.get("exits", []))
+        c["exit_blocked"] += any(e["blocked"] for e in r.get("exits", []))
         c["fell"] += any(fallen(b) for b in r["bodies"])
     return variants, counts
 

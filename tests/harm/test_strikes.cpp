@@ -210,3 +210,30 @@ TEST_CASE("A watch saved in the middle of a strike and loaded into a new one fin
   CHECK(resumed->duration == expected->duration);
   CHECK(resumed->exceeded == expected->exceeded);
 }
+
+TEST_CASE("An item leaning on a person strikes again when it falls through, at its falling speed", "[harm][strike]") {
+  // A box creeps 3 cm into a body's zone at 2 cm/s (one slow strike), rocks there by 5 mm (no strike:
+  // never deeper than before), then moves on at 2 m/s: a second strike, at 2 m/s, whose form sees the
+  // intrusion beyond the 3 cm it had reached (peak v sqrt(k m), impulse 2 m v as from outside).
+  Occupant o;
+  o.name = "walker";
+  StrikeWatch watch(o, OccupantZone::body, "cabinet");
+  const double dt = 1e-3, half = 0.2, x0 = -(o.body_radius + half);  // the box's face at the zone's surface
+  std::vector<Strike> strikes;
+  double x = x0 - 0.01, t = 0;
+  const auto step = [&](double dx) {
+    x += dx, t += dt;
+    if (auto s = watch.observe(t, cube_at(Vec3(x, 0.0, 0.9), half), 10.0)) strikes.push_back(*s);
+  };
+  for (int i = 0; i < 2000; ++i) step(0.02 * dt);                                            // to 3 cm in
+  for (int i = 0; i < 1000; ++i) step((i / 100) % 2 == 0 ? -0.5e-4 : 0.5e-4);               // rocks by 5 mm
+  for (int i = 0; i < 200; ++i) step(2.0 * dt);                                              // through
+  if (auto s = watch.finish()) strikes.push_back(*s);
+  REQUIRE(strikes.size() == 2);
+  CHECK(strikes[0].relative_speed == Approx(0.02).epsilon(1e-6));
+  CHECK(strikes[1].relative_speed == Approx(2.0).epsilon(1e-6));
+  CHECK(strikes[1].time == Approx(3.0).margin(2 * dt));
+  const double m = o.body.mass, k = o.body.stiffness;
+  CHECK(strikes[1].peak_force == Approx(2.0 * std::sqrt(k * m)).epsilon(1e-3));
+  CHECK(strikes[1].impulse == Approx(2 * m * 2.0).epsilon(1e-3));
+}

@@ -75,6 +75,13 @@ inline std::string strike_sentence(const Strike& s) {
 // One zone of one occupant against one item: call observe() after every step with the item's box and
 // kinetic energy; finished strikes are returned by it as they end. A strike lasting longer than
 // `longest` (the form never separated: the item keeps pushing) is closed there.
+//
+// An item still in the zone when its strike ends (a cabinet leaning on the person) strikes again only
+// once it has slowed below `rearm_speed` (it rests or leans there) and then goes deeper than it has
+// been since, faster than that: the person is taken to stand against it at that depth (a fresh form at
+// rest there). An item passing through at speed is one strike; rocking against a person at the same
+// depth is one; a leaning cabinet that then falls through the person is a second one, at its falling
+// speed (the sensor does not stop it: without the second strike it was counted at its leaning speed).
 class StrikeWatch {
  public:
   StrikeWatch(const Occupant& o, OccupantZone z, std::string item, StrikeThresholds t = {})
@@ -83,12 +90,18 @@ class StrikeWatch {
   std::optional<Strike> observe(double t, const OrientedBox& box, double item_kinetic_energy) {
     const double d = zone_intrusion(occupant_, zone_, box);
     std::optional<Strike> done;
+    const double rate = t > t_prev_ ? (d - d_prev_) / (t - t_prev_) : 0.0;
     if (form_) {
-      form_->advance(d_prev_, d, t - t_prev_);
-      const double rate = (d - d_prev_) / (t - t_prev_);
-      if (form_->separated(rate) || t - strike_.time > longest) done = close();
-    } else if (d > 0 && d_prev_ <= 0 && t_prev_ >= 0 && t > t_prev_) {
+      form_->advance(d_prev_ - base_, d - base_, t - t_prev_);
+      if (form_->separated(rate) || t - strike_.time > longest) done = close(), armed_at_ = std::max(0.0, d), armed_ = false;
+    } else if (armed_ && d > armed_at_ && d_prev_ <= armed_at_ && t_prev_ >= 0 && t > t_prev_ &&
+               (armed_at_ == 0 || rate >= rearm_speed)) {
       open(t, d, item_kinetic_energy);
+    } else if (d <= 0) {
+      armed_at_ = 0, armed_ = true;  // out of the zone: armed at its surface again
+    } else {
+      armed_at_ = std::max(armed_at_, d);
+      armed_ = armed_ || rate < rearm_speed;
     }
     d_prev_ = d, t_prev_ = t, ke_prev_ = item_kinetic_energy;
     return done;
@@ -98,13 +111,14 @@ class StrikeWatch {
   bool touching() const { return d_prev_ > 0; }  // the item is in the zone after the last step
   double intrusion() const { return d_prev_; }   // m
 
-  static constexpr double longest = 0.5;  // s
+  static constexpr double longest = 0.5;       // s
+  static constexpr double rearm_speed = 0.05;  // m/s: slower, an item in the zone creeps, it does not strike
 
   // Checkpoints: the last step's intrusion and energy, and the strike under way with its form.
   template <class Self, class Archive>
     requires std::is_same_v<std::remove_const_t<Self>, StrikeWatch>
   friend void transfer_state(Self& w, Archive& ar) {
-    ar(w.d_prev_, w.t_prev_, w.ke_prev_, w.strike_);
+    ar(w.d_prev_, w.t_prev_, w.ke_prev_, w.armed_at_, w.base_, w.armed_, w.strike_);
     bool striking = w.form_.has_value();
     ar(striking);
     if constexpr (!std::is_const_v<Self>) {
@@ -120,11 +134,15 @@ class StrikeWatch {
   std::string item_;
   StrikeThresholds thresholds_;
   double d_prev_ = 0, t_prev_ = -1, ke_prev_ = 0;
+  double armed_at_ = 0;  // the intrusion a strike starts at: 0, or the depth an item in the zone reached
+  double base_ = 0;      // the strike under way's armed_at_: its form sees the intrusion beyond it
+  bool armed_ = true;    // after a strike, false until the item slows below rearm_speed or leaves
   std::optional<FormStrike> form_;
   Strike strike_;
 
   void open(double t, double d, double ke) {
-    const double frac = -d_prev_ / (d - d_prev_);  // where between the steps the item reached the zone
+    base_ = armed_at_;
+    const double frac = (base_ - d_prev_) / (d - d_prev_);  // where between the steps it crossed base_
     strike_ = Strike{};
     strike_.occupant = occupant_.name;
     strike_.item = item_;
@@ -133,7 +151,7 @@ class StrikeWatch {
     strike_.relative_speed = (d - d_prev_) / (t - t_prev_);
     strike_.kinetic_energy = ke_prev_ + frac * (ke - ke_prev_);
     form_.emplace(occupant_.form(zone_));
-    form_->advance(0.0, d, t - strike_.time);
+    form_->advance(0.0, d - base_, t - strike_.time);
   }
   Strike close() {
     strike_.duration = form_->duration();
