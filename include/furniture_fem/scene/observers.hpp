@@ -12,6 +12,8 @@
 //   InputMotionHistory     input_motion.csv                              files
 //   RestraintOutcomes      each restraint's peak and break -> RunSummary::restraints   restraints
 //   RestraintHistory       restraints.csv, restraints.png                files, restraints (restraint_observers.hpp)
+//   ExitOutcomes           each exit's clear width -> RunSummary::exits  exits (exit_observers.hpp)
+//   ExitHistory            exits.csv, plan.png                           files, exits
 //   VtuSeries              room.pvd, vtu/room_<step>.vtu                 files, outputs.vtu_every > 0
 //   FinalStateFile         final_state.json                              files
 //   SummaryFile            summary.json                                  files
@@ -42,6 +44,7 @@
 #include "../io/csv.hpp"
 #include "../io/vtk.hpp"
 #include "contact_force_history.hpp"
+#include "exit_observers.hpp"
 #include "observer.hpp"
 #include "restraint_observers.hpp"
 #include "row_history.hpp"
@@ -640,6 +643,10 @@ class SummaryFile : public RunObserver {
         {"restraints", restraint_outcomes_json(sum.restraints)},
         {"eigen_version", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
                               std::to_string(EIGEN_MINOR_VERSION)}};
+    if (!sum.exits.empty()) {  // only with exits: summary.json without them unchanged
+      summary["exits"] = exit_outcomes_json(sum.exits);
+      summary["floor_covered_by_fallen_items_m2"] = *sum.floor_covered_by_fallen_items;
+    }
     if (ground) summary["floor_motion_peak_m_s2"] = {run.motion.peaks().x(), run.motion.peaks().y(), run.motion.peaks().z()};
     detail::write_text(run.out_dir + "/summary.json", summary.dump(2) + "\n");
   }
@@ -838,6 +845,7 @@ inline std::vector<std::unique_ptr<RunObserver>> standard_observers(const RunVie
   list.push_back(std::make_unique<SectionPeaks>());
   list.push_back(std::make_unique<EnergyCheck>());
   if (!run.spec.restraints.empty()) list.push_back(std::make_unique<RestraintOutcomes>());
+  if (!run.spec.exits.empty()) list.push_back(std::make_unique<ExitOutcomes>());
   if (run.out_dir.empty()) return list;
   list.push_back(std::make_unique<MarkerHistory>());
   list.push_back(std::make_unique<SectionalForceHistory>());
@@ -845,6 +853,7 @@ inline std::vector<std::unique_ptr<RunObserver>> standard_observers(const RunVie
   list.push_back(std::make_unique<ContactForceHistory>());
   list.push_back(std::make_unique<InputMotionHistory>());
   if (!run.spec.restraints.empty()) list.push_back(std::make_unique<RestraintHistory>());
+  if (!run.spec.exits.empty()) list.push_back(std::make_unique<ExitHistory>());
   if (run.spec.outputs.vtu_every > 0) list.push_back(std::make_unique<VtuSeries>());
   list.push_back(std::make_unique<FinalStateFile>());
   list.push_back(std::make_unique<SummaryFile>());

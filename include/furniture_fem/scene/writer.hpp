@@ -13,6 +13,7 @@
 
 #define FURNITURE_FEM_SCENE_INTERNAL
 #include "detail/scene_building.hpp"
+#include "detail/scene_exits.hpp"
 #include "detail/scene_restraints.hpp"
 #include "detail/scene_json.hpp"
 #include "detail/scene_names.hpp"
@@ -103,6 +104,10 @@ inline nlohmann::json to_json(const SceneSpec& s) {
   if (!s.restraints.empty()) {  // written when there are some: scene.json without them unchanged
     j["restraints"] = json::array();
     for (const auto& r : s.restraints) j["restraints"].push_back(detail::restraint_json(r));
+  }
+  if (!s.exits.empty()) {  // as restraints: scene.json without exits unchanged
+    j["exits"] = json::array();
+    for (const auto& e : s.exits) j["exits"].push_back(detail::exit_json(e));
   }
   j["ground_motion"] = detail::ground_motion_json(s.ground_motion);
   json contact = {{"law", std::string(scene_law(s.contact.law).name)},

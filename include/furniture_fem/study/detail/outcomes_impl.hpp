@@ -98,12 +98,14 @@ FFEM_STUDY_ENTRY RunResult run_realisation(const StudySpec& s, long run, const s
       r.sections.push_back(so);
     }
     r.restraints = sum.restraints;
+    r.exits = sum.exits;
   } catch (const std::exception& e) {  // a refused scene or model: recorded, the study goes on
     r.status = "failed";
     r.diagnosis = e.what();
     r.bodies.clear();
     r.sections.clear();
     r.restraints.clear();
+    r.exits.clear();
   }
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
@@ -160,6 +162,7 @@ FFEM_STUDY_ENTRY nlohmann::json to_json(const RunResult& r) {
                       {"status", r.status}, {"diagnosis", r.diagnosis},   {"t_end", r.t_end},
                       {"wall_seconds", r.wall_seconds}, {"bodies", bodies}, {"sections", sections}};
   if (!r.restraints.empty()) j["restraints"] = restraint_outcomes_json(r.restraints);  // records without: as before
+  if (!r.exits.empty()) j["exits"] = exit_outcomes_json(r.exits);  // as restraints
   return j;
 }
 
@@ -183,6 +186,8 @@ FFEM_STUDY_ENTRY RunResult run_result_from_json(const nlohmann::json& j) {
     r.sections.push_back({s.at("section").get<std::string>(), s.at("abs_max").get<std::array<double, 6>>()});
   if (j.contains("restraints"))
     for (const auto& o : j.at("restraints")) r.restraints.push_back(restraint_outcome_from_json(o));
+  if (j.contains("exits"))
+    for (const auto& o : j.at("exits")) r.exits.push_back(exit_outcome_from_json(o));
   return r;
 }
 
