@@ -1,4 +1,5 @@
 // An exit's clear width and the floor area covered (harm/exit_path.hpp), against hand-computed geometry.
+// Every exit here needs 0.75 m: its band reaches 0.375 m to each side of the path.
 // Tolerances: every number below is a sum or a quotient of a few exact decimals, so they agree to
 // rounding (1e-12); a station's position on a boundary is allowed 1e-9 (its arc length is a product).
 #include <catch2/catch.hpp>
@@ -56,7 +57,7 @@ TEST_CASE("A cabinet standing beside a corridor narrows it to the gap between it
   ExitRoom room = table_room();
   room.walls.push_back({"south", Vec2(-2, -0.5), Vec2(2, -0.5)});
   room.side_reach = 1.0;
-  const ExitMeasure m = measure_exit(along_x, room, {standing()});
+  const ExitMeasure m = measure_exit(along_x, 0.75, room, {standing()});
   const CrossSection& n = m.at_narrowest();
   CHECK(n.clear_width == Approx(0.8).epsilon(1e-12));
   CHECK(n.from == Approx(-0.5).epsilon(1e-12));
@@ -79,7 +80,7 @@ TEST_CASE("A cabinet tipped across a corridor leaves the gap beyond its back", "
   ExitRoom room = table_room();
   room.walls.push_back({"south", Vec2(-2, -0.6), Vec2(2, -0.6)});
   room.walls.push_back({"north", Vec2(2, 0.6), Vec2(-2, 0.6)});
-  const ExitMeasure m = measure_exit(along_x, room, {tipped()});
+  const ExitMeasure m = measure_exit(along_x, 0.75, room, {tipped()});
   const CrossSection& n = m.at_narrowest();
   CHECK(n.clear_width == Approx(0.3).epsilon(1e-12));
   CHECK(n.low.kind == SectionBound::Kind::obstacle);
@@ -90,10 +91,25 @@ TEST_CASE("A cabinet tipped across a corridor leaves the gap beyond its back", "
   PlanObstacle other = tipped();
   other.name = "other";
   for (Vec2& p : other.outline) p.y() += 0.9;  // y in [-0.6, 1.2]
-  const ExitMeasure both = measure_exit(along_x, room, {tipped(), other});
+  const ExitMeasure both = measure_exit(along_x, 0.75, room, {tipped(), other});
   const CrossSection& shut = both.at_narrowest();
   CHECK(shut.clear_width == 0.0);
   CHECK(shut.narrowed_by() == std::vector<std::string>{"cabinet", "other"});
+}
+
+TEST_CASE("A gap across an open room is not the exit's: only gaps that reach into its band count", "[harm][exit]") {
+  // The tipped cabinet moved 0.2 m to +y covers y in [-1.3, 0.5] over the path; the table runs from -2 to
+  // 2. Free: [-2, -1.3] and [0.5, 2] (1.5 m), neither reaching into the band |y| < 0.375: nothing is
+  // clear, the cabinet covers the band. An exit needing 1.2 m (band 0.6) reaches the 1.5 m gap.
+  PlanObstacle lying = tipped();
+  for (Vec2& p : lying.outline) p.y() += 0.2;
+  const ExitMeasure m = measure_exit(along_x, 0.75, table_room(), {lying});
+  CHECK(m.at_narrowest().clear_width == 0.0);
+  CHECK(m.at_narrowest().narrowed_by() == std::vector<std::string>{"cabinet"});
+  CHECK(station_at(m, Vec2(0.8, 0)).clear_width == Approx(4.0).epsilon(1e-12));
+  const ExitMeasure wide = measure_exit(along_x, 1.2, table_room(), {lying});
+  CHECK(wide.at_narrowest().clear_width == Approx(1.5).epsilon(1e-12));
+  CHECK(wide.at_narrowest().from == Approx(0.5).epsilon(1e-12));
 }
 
 TEST_CASE("A bent path: each segment's sections are perpendicular to it", "[harm][exit]") {
@@ -102,7 +118,7 @@ TEST_CASE("A bent path: each segment's sections are perpendicular to it", "[harm
   ExitRoom room = table_room();
   room.side_reach = 0.6;
   const PlanObstacle box{"box", {Vec2(0.3, 0.4), Vec2(0.5, 0.4), Vec2(0.5, 0.8), Vec2(0.3, 0.8)}};
-  const ExitMeasure m = measure_exit({Vec2(-1, 0), Vec2(0, 0), Vec2(0, 1)}, room, {box});
+  const ExitMeasure m = measure_exit({Vec2(-1, 0), Vec2(0, 0), Vec2(0, 1)}, 0.75, room, {box});
   const CrossSection& n = m.at_narrowest();
   CHECK(n.clear_width == Approx(0.9).epsilon(1e-12));
   CHECK(n.station.s >= 1.4 - 1e-9);
@@ -118,7 +134,7 @@ TEST_CASE("Walls and the table's edge bound a section: a short wall, an oblique 
   // from the table's edge at y = -2 to the wall (2.5 m).
   ExitRoom room = table_room();
   room.walls.push_back({"short", Vec2(0, 0.5), Vec2(2, 0.5)});
-  const ExitMeasure m = measure_exit(along_x, room, {});
+  const ExitMeasure m = measure_exit(along_x, 0.75, room, {});
   CHECK(station_at(m, Vec2(-0.5, 0)).clear_width == Approx(4.0).epsilon(1e-12));
   const CrossSection& beside = station_at(m, Vec2(0.5, 0));
   CHECK(beside.clear_width == Approx(2.5).epsilon(1e-12));
@@ -127,7 +143,7 @@ TEST_CASE("Walls and the table's edge bound a section: a short wall, an oblique 
   // An oblique wall from (-2, 1.5) to (2, 0.5): y = 1 - x / 4 over the path, 0.875 at x = 0.5.
   ExitRoom oblique = table_room();
   oblique.walls.push_back({"oblique", Vec2(-2, 1.5), Vec2(2, 0.5)});
-  const ExitMeasure o = measure_exit(along_x, oblique, {});
+  const ExitMeasure o = measure_exit(along_x, 0.75, oblique, {});
   CHECK(station_at(o, Vec2(0.5, 0)).clear_width == Approx(2.875).epsilon(1e-12));
   CHECK(o.at_narrowest().station.at.x() == Approx(1.0).epsilon(1e-12));  // nearest the wall at x = 1
   CHECK(o.at_narrowest().clear_width == Approx(2.75).epsilon(1e-12));

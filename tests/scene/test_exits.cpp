@@ -7,6 +7,8 @@
 #include <furniture_fem/io/csv.hpp>
 #include <furniture_fem/scene/scene_runner.hpp>
 
+#include "../support/input_errors.hpp"
+
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -52,12 +54,7 @@ SceneSpec read(const json& j) {
 }
 
 std::string read_error(const json& j) {
-  try {
-    read(j);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
+  return ffem_test::input_error([&] { read(j); });
 }
 
 RunSummary run(const SceneSpec& s, const std::string& out) {
@@ -116,11 +113,12 @@ TEST_CASE("A slender block tipped over the path by a pulse blocks it, named, and
           "[scene][exits]") {
   // A 0.2 x 0.2 x 1.2 m block at x = 1 (mu 0.9: it tips, it does not slide) under a 15 m/s^2 pulse along
   // +x for 0.3 s (seven times the 1.6 m/s^2 that tips it, g b / h): it topples towards -x and lies over
-  // x in about [-0.3, 0.9], y in [-0.1, 0.1]. The path crosses it along y at x = 0.3, 0.2 m counting to
-  // each side: those sections lie within the block, nothing of them is free.
+  // x in about [-0.3, 0.9], y in [-0.1, 0.1]. The path crosses it along y at x = 0.3, 0.4 m counting to
+  // each side (0.8 m: enough for the 0.75 m exit while the post stands at x in [0.9, 1.1]): the sections
+  // through the fallen post, x in [-0.1, 0.7], lie within it, nothing of them is free.
   json j = {{"name", "toppled"},
             {"items", {block("post", 1.0, 0.0, 0.2, 0.2, 1.2)}},
-            {"exits", {{{"name", "door"}, {"path", {{0.3, -0.8}, {0.3, 0.8}}}, {"side_reach", 0.2}}}},
+            {"exits", {{{"name", "door"}, {"path", {{0.3, -0.8}, {0.3, 0.8}}}, {"side_reach", 0.4}}}},
             {"ground_motion", {{"source", "points"}, {"x", {{0.0, 0.0}, {0.01, 15.0}, {0.3, 15.0}, {0.31, 0.0}}}}},
             {"contact", {{"law", "stiff"}}},
             {"duration", 2.5},

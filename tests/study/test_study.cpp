@@ -617,9 +617,9 @@ namespace study_tests {
 
 TEST_CASE("a study variant with an exit records its outcome, and the record reads back", "[study][exits]") {
   // The block (0.4 x 0.4 m) stands on a path along x; 0.3 m counts to each side, so 0.1 m is free on
-  // either side of it, below the exit's 0.25 m: every run of the variant is blocked from t = 0 to the
-  // end, by the crate (it slides along the path, it does not leave it). The variant without exits has
-  // none in its record.
+  // either side of it, below the exit's 0.25 m, and outside its band (0.125 m to each side): every run
+  // of the variant is blocked from t = 0 to the end, clear width 0, by the crate (it slides along the
+  // path, it does not leave it). The variant without exits has none in its record.
   json j = block_study(2);
   const json exits = {{{"name", "aisle"}, {"path", {{-1.5, 0.0}, {1.5, 0.0}}}, {"width", 0.25}, {"side_reach", 0.3}}};
   j["compare"] = {{{"name", "free"}, {"scene", json::object()}}, {{"name", "aisle"}, {"scene", {{"exits", exits}}}}};
@@ -641,7 +641,8 @@ TEST_CASE("a study variant with an exit records its outcome, and the record read
     REQUIRE(e.first_blocked);
     CHECK(e.first_blocked->t == 0.0);
     CHECK(e.first_blocked->by == std::vector<std::string>{"crate"});
-    CHECK(e.at_end.clear_width == Approx(0.1).margin(1e-3));  // a slide turns it by well under a degree
+    CHECK(e.at_end.clear_width == 0.0);
+    CHECK(e.at_end.by == std::vector<std::string>{"crate"});
     CHECK(record.at("exits")[0].at("first_blocked_at_s") == 0.0);
     CHECK(to_json(run_result_from_json(json::parse(record.dump()))) == record);
   }

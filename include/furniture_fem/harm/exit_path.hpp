@@ -6,7 +6,8 @@
 //                     unit normal of its segment
 //   cross_section     the line through a station along its normal, cut to the room (the table's edge, the
 //                     walls, an optional reach to each side), less what the obstacles' outlines cover:
-//                     the clear width is the length of the widest free interval left
+//                     the clear width is the length of the widest free interval left that reaches into
+//                     the exit's own band (within half its width of the path)
 //   measure_exit      every station's cross-section and the narrowest one
 //   union_area        the area of the union of convex outlines, exact (a sweep over x)
 #include <Eigen/Core>
@@ -53,9 +54,9 @@ struct SectionBound {
   std::string name;  // the obstacle's or the wall's
 };
 
-// A cross-section's widest free interval [from, to] along the normal from the station (m; from <= 0 <=
-// to need not hold: the path point itself may be covered), its bounds; `covered_by`: when nothing is
-// free, the obstacles that cover the whole section.
+// A cross-section's widest free interval [from, to] reaching into the exit's band, along the normal from
+// the station (m; from <= 0 <= to need not hold: the path point itself may be covered), its bounds;
+// `covered_by`: when no free interval reaches into the band, the obstacles that cut the band.
 struct CrossSection {
   PathStation station;
   double clear_width = 0;  // to - from (m)
@@ -137,9 +138,13 @@ inline std::pair<double, SectionBound> room_limit(const Vec2& p, const Vec2& d, 
 
 }  // namespace detail
 
-// The cross-section at a station: the room's extent along its normal, less the obstacles' intervals;
-// the widest free interval is its clear width (the first of equal ones, from the right of the path).
-inline CrossSection cross_section(const PathStation& st, const ExitRoom& room, const std::vector<PlanObstacle>& obstacles) {
+// The cross-section at a station: the room's extent along its normal, less the obstacles' intervals; its
+// clear width is the widest free interval that reaches into the band |u| < band_half (the first of equal
+// ones, from the right of the path). A gap that opens from within the band is one a person on the route
+// can step into; one wholly outside it is another part of the room (across an open room it would read as
+// the exit's width whatever lies on the path).
+inline CrossSection cross_section(const PathStation& st, const ExitRoom& room, const std::vector<PlanObstacle>& obstacles,
+                                  double band_half) {
   const auto [up, high_bound] = detail::room_limit(st.at, st.normal, room);
   const auto [down, low_bound] = detail::room_limit(st.at, -st.normal, room);
   struct Cut {
@@ -156,15 +161,16 @@ inline CrossSection cross_section(const PathStation& st, const ExitRoom& room, c
   double edge = -down;  // the free interval starts here, bounded by `bound`
   SectionBound bound = low_bound;
   const auto consider = [&](double end, const SectionBound& end_bound) {
-    if (end - edge > x.clear_width) x.clear_width = end - edge, x.from = edge, x.to = end, x.low = bound, x.high = end_bound;
+    if (end - edge > x.clear_width && end > -band_half && edge < band_half) x.clear_width = end - edge, x.from = edge, x.to = end, x.low = bound, x.high = end_bound;
   };
   for (const Cut& c : cuts) {
     if (c.lo > edge) consider(c.lo, {SectionBound::Kind::obstacle, *c.name});
     if (c.hi > edge) edge = c.hi, bound = {SectionBound::Kind::obstacle, *c.name};
   }
   if (up > edge) consider(up, high_bound);
-  if (x.clear_width == 0)
-    for (const Cut& c : cuts) x.covered_by.push_back(*c.name);
+  if (x.clear_width == 0)  // what covers the band
+    for (const Cut& c : cuts)
+      if (c.hi > -band_half && c.lo < band_half) x.covered_by.push_back(*c.name);
   return x;
 }
 
@@ -175,11 +181,12 @@ struct ExitMeasure {
   const CrossSection& at_narrowest() const { return sections[narrowest]; }
 };
 
-inline ExitMeasure measure_exit(const std::vector<Vec2>& path, const ExitRoom& room,
+// `width`: the exit's required width (its band is half of it to each side of the path).
+inline ExitMeasure measure_exit(const std::vector<Vec2>& path, double width, const ExitRoom& room,
                                 const std::vector<PlanObstacle>& obstacles, double spacing = 0.05) {
   ExitMeasure m;
   for (const PathStation& st : path_stations(path, spacing)) {
-    m.sections.push_back(cross_section(st, room, obstacles));
+    m.sections.push_back(cross_section(st, room, obstacles, 0.5 * width));
     if (m.sections.back().clear_width < m.sections[m.narrowest].clear_width) m.narrowest = m.sections.size() - 1;
   }
   return m;

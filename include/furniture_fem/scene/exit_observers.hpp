@@ -35,7 +35,7 @@ inline std::vector<PlanObstacle> current_plan_obstacles(const RunView& run) {
 inline std::vector<ExitMeasure> measure_exits(const RunView& run) {
   const std::vector<PlanObstacle> obstacles = current_plan_obstacles(run);
   std::vector<ExitMeasure> out;
-  for (const ExitSpec& e : run.spec.exits) out.push_back(measure_exit(e.path, detail::exit_room(run.spec, e), obstacles));
+  for (const ExitSpec& e : run.spec.exits) out.push_back(measure_exit(e.path, e.width, detail::exit_room(run.spec, e), obstacles));
   return out;
 }
 
@@ -97,8 +97,8 @@ class ExitOutcomes : public RunObserver {
   }
 };
 
-// Each exit on the plan: its path, its required width as a band (blue), red over the stations whose clear
-// width is below it; `now`: the exits measured (measure_exits), in the scene's order.
+// Each exit on the plan: its path (dashed), its required width as a band (blue), red over the stations
+// whose clear width is below it; `now`: the exits measured (measure_exits), in the scene's order.
 inline void add_exits_to_plan(LinePlot& p, const SceneSpec& spec, const std::vector<ExitMeasure>& now) {
   const RGB band{60, 120, 220}, blocked{220, 30, 30};
   bool band_named = false, blocked_named = false;  // each named once in the legend
@@ -106,15 +106,23 @@ inline void add_exits_to_plan(LinePlot& p, const SceneSpec& spec, const std::vec
     const ExitSpec& e = spec.exits[i];
     const double h = 0.5 * e.width;
     const auto& sec = now[i].sections;
-    for (std::size_t k = 0; k + 1 < sec.size(); ++k) {
-      const PathStation &a = sec[k].station, &b = sec[k + 1].station;
-      if (a.normal != b.normal) continue;  // a corner: the next segment starts
-      const bool red = sec[k].clear_width < e.width || sec[k + 1].clear_width < e.width;
-      bool& named = red ? blocked_named : band_named;
-      const std::vector<Vec2> quad = {a.at - h * a.normal, b.at - h * b.normal, b.at + h * b.normal, a.at + h * a.normal};
-      p.add(detail::closed_series(quad, named ? "" : red ? "clear width below the exit's" : "the exit's width", red ? blocked : band,
-                                  0.5, red ? 0.6 : 0.2));
-      named = true;
+    const auto red = [&](std::size_t k) { return sec[k].clear_width < e.width || sec[k + 1].clear_width < e.width; };
+    // One polygon per run of station pairs of one colour along one segment (a corner starts a new run).
+    for (std::size_t k = 0; k + 1 < sec.size();) {
+      std::size_t last = k;
+      while (last + 2 < sec.size() && sec[last + 1].station.normal == sec[k].station.normal &&
+             sec[last + 2].station.normal == sec[k].station.normal && red(last + 1) == red(k))
+        ++last;
+      const PathStation &a = sec[k].station, &b = sec[last + 1].station;
+      const bool is_red = red(k);
+      bool& named = is_red ? blocked_named : band_named;
+      if (a.normal == b.normal) {
+        const std::vector<Vec2> quad = {a.at - h * a.normal, b.at - h * b.normal, b.at + h * b.normal, a.at + h * a.normal};
+        p.add(detail::closed_series(quad, named ? "" : is_red ? "clear width below the exit's" : "the exit's width",
+                                    is_red ? blocked : band, 0.5, is_red ? 0.6 : 0.2));
+        named = true;
+      }
+      k = last + 1;
     }
     Series line;
     for (const Vec2& q : e.path) line.x.push_back(q.x()), line.y.push_back(q.y());
