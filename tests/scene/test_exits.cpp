@@ -132,7 +132,11 @@ TEST_CASE("A slender block tipped over the path by a pulse blocks it, named, and
   REQUIRE(sum.items[0].state == "overturned");
   const ExitOutcome& door = sum.exits.at(0);
   CHECK(door.blocked);
-  CHECK(door.at_end.clear_width == 0.0);
+  // Lying across the sections once it lands (their 0.8 m all covered); it then slides on towards -x, so
+  // at the end a strip of the sections beyond its foot may be free, far below the exit's 0.75 m.
+  CHECK(door.narrowest.clear_width == 0.0);
+  CHECK(door.narrowest.by == std::vector<std::string>{"post"});
+  CHECK(door.at_end.clear_width < 0.3);
   CHECK(door.at_end.by == std::vector<std::string>{"post"});
   REQUIRE(door.first_blocked);
   CHECK(door.first_blocked->by == std::vector<std::string>{"post"});
