@@ -14,6 +14,7 @@
 // command line; a second one leaves at once. A long run also writes one every --checkpoint-every S of
 // wall time (default 600 s), so a killed run is not lost either.
 #include <furniture_fem/core/text.hpp>
+#include <furniture_fem/scene/exit_outcome.hpp>
 #include <furniture_fem/scene/paper_configurations.hpp>
 #include <furniture_fem/scene/run_scene.hpp>
 
@@ -198,6 +199,9 @@ int report(const SceneSpec& spec, const RunSummary& s) {
     for (const auto& st : o.strikes) std::printf("  occupant %-17s %s\n", o.name.c_str(), strike_sentence(st).c_str());
     for (const auto& item : o.in_contact_at_end) std::printf("  occupant %-17s in contact with %s at the end\n", o.name.c_str(), item.c_str());
   }
+  for (const auto& e : s.exits) std::printf("  %s\n", exit_outcome_text(e).c_str());
+  if (s.floor_covered_by_fallen_items)
+    std::printf("  floor covered by fallen items: %.2f m^2\n", *s.floor_covered_by_fallen_items);
   std::printf("  results in %s\n", s.out_dir.c_str());
   // A stopped run is not a complete one: scripts see 130 (the shell's code for Ctrl-C).
   if (s.status == "stopped") return exit_interrupted;

@@ -3,27 +3,14 @@
 #include <cmath>
 #include <numbers>
 
+#include <furniture_fem/harm/exit_path.hpp>  // polygon_area
 #include <furniture_fem/harm/item_box.hpp>
 
-using namespace furniture_fem;
+#include "test_boxes.hpp"
 
-namespace {
-ItemInfo cabinet(double W, double D, double H, const Vec3& at) {
-  ItemInfo it;
-  it.size = Vec3(W, D, H);
-  it.position = at;
-  return it;
-}
-double polygon_area(const std::vector<Vec2>& p) {
-  double a = 0.0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const Vec2& u = p[i];
-    const Vec2& v = p[(i + 1) % p.size()];
-    a += u.x() * v.y() - v.x() * u.y();
-  }
-  return 0.5 * a;
-}
-}  // namespace
+using namespace furniture_fem;
+using test::cabinet;
+
 
 TEST_CASE("A placed box stands on its footprint, its outline is its footprint", "[harm][box]") {
   const ItemInfo it = cabinet(0.9, 0.4, 1.8, Vec3(1.0, 2.0, 0.0));

@@ -644,6 +644,38 @@ TEST_CASE("a run record keeps each occupant's strikes, and reads back", "[study]
   CHECK(b.exceeded == s.exceeded);
   CHECK(back.occupants[0].in_contact_at_end == o.in_contact_at_end);
   CHECK(to_json(back) == j);
+TEST_CASE("a study variant with an exit records its outcome, and the record reads back", "[study][exits]") {
+  // The block (0.4 x 0.4 m) stands on a path along x; 0.3 m counts to each side, so 0.1 m is free on
+  // either side of it, below the exit's 0.25 m, and outside its band (0.125 m to each side): every run
+  // of the variant is blocked from t = 0 to the end, clear width 0, by the crate (it slides along the
+  // path, it does not leave it). The variant without exits has none in its record.
+  json j = block_study(2);
+  const json exits = {{{"name", "aisle"}, {"path", {{-1.5, 0.0}, {1.5, 0.0}}}, {"width", 0.25}, {"side_reach", 0.3}}};
+  j["compare"] = {{{"name", "free"}, {"scene", json::object()}}, {{"name", "aisle"}, {"scene", {{"exits", exits}}}}};
+  const StudySpec s = study_of(j);
+  int blocked = 0;
+  for (long run = 0; run < s.num_runs(); ++run) {
+    const RunResult r = run_realisation(s, run);
+    REQUIRE(r.status == "completed");
+    const json record = to_json(r);
+    if (r.variant == 0) {
+      CHECK(r.exits.empty());
+      CHECK_FALSE(record.contains("exits"));
+      continue;
+    }
+    REQUIRE(r.exits.size() == 1);
+    const ExitOutcome& e = r.exits[0];
+    CHECK(e.name == "aisle");
+    blocked += e.blocked;
+    REQUIRE(e.first_blocked);
+    CHECK(e.first_blocked->t == 0.0);
+    CHECK(e.first_blocked->by == std::vector<std::string>{"crate"});
+    CHECK(e.at_end.clear_width == 0.0);
+    CHECK(e.at_end.by == std::vector<std::string>{"crate"});
+    CHECK(record.at("exits")[0].at("first_blocked_at_s") == 0.0);
+    CHECK(to_json(run_result_from_json(json::parse(record.dump()))) == record);
+  }
+  CHECK(blocked == s.num_runs() / 2);
 }
 
 }  // namespace study_tests

@@ -47,6 +47,7 @@ struct Series {
   double width = 0;             // px; 0 uses PlotStyle::line_width
   bool dashed = false;
   double marker = 0;            // radius in px of a dot at every point; 0: none
+  double fill = 0;              // opacity of a fill of the polygon the points close (a plan's outline); 0: none
 };
 
 class LinePlot : public detail::FigureFiles<LinePlot, 1000, 600> {
@@ -110,6 +111,7 @@ class LinePlot : public detail::FigureFiles<LinePlot, 1000, 600> {
       for (const Series& s : panels_[i].series) {
         const double w = s.width > 0 ? s.width : style_.line_width;
         const auto pts = detail::to_pixels(s.x, s.y, pl);
+        if (s.fill > 0) c.fill_polygon(pts, *s.color, s.fill);
         c.polyline(pts, *s.color, w, pl.frame, s.dashed);
         if (s.marker > 0)
           for (const auto& q : pts)

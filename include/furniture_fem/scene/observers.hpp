@@ -14,6 +14,10 @@
 //   RestraintHistory       restraints.csv, restraints.png                files, restraints (restraint_observers.hpp)
 //   OccupantStrikes        each strike on an occupant -> RunSummary::occupants, strikes.csv   occupants
 //                                                                        (occupant_observers.hpp)
+//   ExitOutcomes           each exit's clear width -> RunSummary::exits  exits (exit_observers.hpp)
+//   ExitHistory            exits.csv                                     files, exits
+//   HarmFigures            plan.png, timeline.png                        files, figures, occupants or exits
+//                                                                        (harm_figures.hpp)
 //   VtuSeries              room.pvd, vtu/room_<step>.vtu                 files, outputs.vtu_every > 0
 //   FinalStateFile         final_state.json                              files
 //   SummaryFile            summary.json                                  files
@@ -44,6 +48,8 @@
 #include "../io/csv.hpp"
 #include "../io/vtk.hpp"
 #include "contact_force_history.hpp"
+#include "exit_observers.hpp"
+#include "harm_figures.hpp"
 #include "observer.hpp"
 #include "occupant_observers.hpp"
 #include "restraint_observers.hpp"
@@ -644,6 +650,10 @@ class SummaryFile : public RunObserver {
         {"eigen_version", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
                               std::to_string(EIGEN_MINOR_VERSION)}};
     if (!sum.occupants.empty()) summary["occupants"] = occupant_outcomes_json(sum.occupants);  // only with occupants
+    if (!sum.exits.empty()) {  // only with exits: summary.json without them unchanged
+      summary["exits"] = exit_outcomes_json(sum.exits);
+      summary["floor_covered_by_fallen_items_m2"] = *sum.floor_covered_by_fallen_items;
+    }
     if (ground) summary["floor_motion_peak_m_s2"] = {run.motion.peaks().x(), run.motion.peaks().y(), run.motion.peaks().z()};
     detail::write_text(run.out_dir + "/summary.json", summary.dump(2) + "\n");
   }
@@ -843,6 +853,7 @@ inline std::vector<std::unique_ptr<RunObserver>> standard_observers(const RunVie
   list.push_back(std::make_unique<EnergyCheck>());
   if (!run.spec.restraints.empty()) list.push_back(std::make_unique<RestraintOutcomes>());
   if (!run.spec.occupants.empty()) list.push_back(std::make_unique<OccupantStrikes>());
+  if (!run.spec.exits.empty()) list.push_back(std::make_unique<ExitOutcomes>());
   if (run.out_dir.empty()) return list;
   list.push_back(std::make_unique<MarkerHistory>());
   list.push_back(std::make_unique<SectionalForceHistory>());
@@ -850,10 +861,14 @@ inline std::vector<std::unique_ptr<RunObserver>> standard_observers(const RunVie
   list.push_back(std::make_unique<ContactForceHistory>());
   list.push_back(std::make_unique<InputMotionHistory>());
   if (!run.spec.restraints.empty()) list.push_back(std::make_unique<RestraintHistory>());
+  if (!run.spec.exits.empty()) list.push_back(std::make_unique<ExitHistory>());
   if (run.spec.outputs.vtu_every > 0) list.push_back(std::make_unique<VtuSeries>());
   list.push_back(std::make_unique<FinalStateFile>());
   list.push_back(std::make_unique<SummaryFile>());
-  if (run.options.figures.value_or(run.spec.outputs.figures)) list.push_back(std::make_unique<Figures>());
+  if (run.options.figures.value_or(run.spec.outputs.figures)) {
+    list.push_back(std::make_unique<Figures>());
+    if (!run.spec.occupants.empty() || !run.spec.exits.empty()) list.push_back(std::make_unique<HarmFigures>());
+  }
   return list;
 }
 

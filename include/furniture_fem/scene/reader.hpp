@@ -29,6 +29,7 @@
 #include "detail/scene_json.hpp"
 #include "detail/scene_names.hpp"
 #include "detail/scene_occupants.hpp"
+#include "detail/scene_exits.hpp"
 #include "detail/scene_restraints.hpp"
 #undef FURNITURE_FEM_SCENE_INTERNAL
 
@@ -266,8 +267,9 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
   SceneSpec s;
   s.source = source;
   const ObjectReader r(j, "", source);
-  r.allow_only({"name", "table", "walls", "ceiling", "obstacles", "items", "restraints", "occupants",
-                "strike_thresholds", "ground_motion", "contact", "integrator", "solver", "refresh_every", "duration", "dt", "allow_coarse_dt", "outputs"});
+  r.allow_only({"name", "table", "walls", "ceiling", "obstacles", "items", "restraints", "occupants", "strike_thresholds",
+                "exits", "ground_motion", "contact", "integrator", "solver", "refresh_every", "duration", "dt",
+                "allow_coarse_dt", "outputs"});
   s.name = r.string("name", s.name);
 
   if (r.has("table")) {
@@ -418,6 +420,12 @@ inline SceneSpec parse_scene_json(const nlohmann::json& j, const std::string& so
     if (const auto problem = detail::occupant_problem(s.occupants.back(), s)) r.fail(path + "." + problem->first, problem->second);
   });
   if (r.has("strike_thresholds")) s.strike_thresholds = detail::read_strike_thresholds(r.object("strike_thresholds"));
+  r.array("exits", [&](const nlohmann::json& v, const std::string& path) {
+    s.exits.push_back(detail::read_exit(v, path, source, s.exits.size()));
+    for (std::size_t k = 0; k + 1 < s.exits.size(); ++k)
+      if (s.exits[k].name == s.exits.back().name) r.fail(path + ".name", "duplicate exit name \"" + s.exits[k].name + "\"");
+    if (const auto problem = detail::exit_problem(s.exits.back(), s)) r.fail(path + "." + problem->first, problem->second);
+  });
   s.allow_coarse_dt = r.boolean("allow_coarse_dt", s.allow_coarse_dt);
 
   if (r.has("outputs")) {

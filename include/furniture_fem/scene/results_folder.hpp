@@ -61,7 +61,7 @@ inline bool results_file(std::string_view rel) {
   for (std::string_view f : {"run.json", "summary.json", "final_state.json", "markers.csv", "sectional_forces.csv",
                              "energy.csv", "contact_forces.csv", "contact_pairs.csv", "input_motion.csv", "room.pvd",
                              "room_final.png", "input_motion.png", "input_spectra.png", "energy.png", "checkpoint.bin",
-                             "restraints.csv", "restraints.png", "strikes.csv"})
+                             "restraints.csv", "restraints.png", "strikes.csv", "exits.csv", "plan.png", "timeline.png"})
     if (rel == f) return true;
   const bool png = detail::ends_with(rel, ".png") && rel.find('/') == std::string_view::npos;
   if (png && (detail::starts_with(rel, "marker_") || detail::starts_with(rel, "shear_"))) return true;

@@ -12,6 +12,7 @@
 #include <atomic>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "../core/model.hpp"
@@ -156,6 +157,30 @@ struct OccupantOutcome {
   }
 };
 
+// An exit's narrowest cross-section at one time (scene/exit_observers.hpp; docs/harm/harm.md, "Exits").
+struct ExitSection {
+  double t = 0;            // s
+  double clear_width = 0;  // m: the widest free interval of the section
+  double s = 0;            // m: the station's arc length along the path
+  double x = 0, y = 0;     // m: the station
+  std::vector<std::string> by;  // the items that narrow it (none: walls, the table's edge, the reach)
+  template <class Self, class Archive>
+    requires std::is_same_v<std::remove_const_t<Self>, ExitSection>
+  friend void transfer_state(Self& e, Archive& ar) {
+    ar(e.t, e.clear_width, e.s, e.x, e.y, e.by);
+  }
+};
+
+// What an exit's clear width did over the run, measured at the history rows and at the end.
+struct ExitOutcome {
+  std::string name;
+  double required_width = 0;                 // m
+  bool blocked = false;                      // at the end: its clear width below required_width
+  std::optional<ExitSection> first_blocked;  // the first row it was below required_width
+  ExitSection narrowest;                     // the narrowest over the run (the first of equals)
+  ExitSection at_end;
+};
+
 struct RunSummary {
   std::string status = "completed";  // completed, stopped, diverged
   std::string diagnosis;             // why it stopped; for a completed run, empty or an energy-loss warning
@@ -183,6 +208,9 @@ struct RunSummary {
   std::vector<SectionForcePeak> section_peaks;  // one per outputs.sectional_forces request
   std::vector<RestraintOutcome> restraints;     // one per restraint, in the scene's order
   std::vector<OccupantOutcome> occupants;       // one per occupant, in the scene's order
+  std::vector<ExitOutcome> exits;               // one per exit, in the scene's order
+  // With exits: the area of the union of the plan outlines of the items that fell or overturned (m^2).
+  std::optional<double> floor_covered_by_fallen_items;
   EnergyVerdict energy;                         // the energy ledger's verdict
   std::string out_dir;  // empty when the run wrote no files (write_files false, or stopped before it was built)
   // The factor ground_motion.scale_to applied to the record (1 without a target); `level` multiplies after.

@@ -104,6 +104,17 @@ struct RestraintSpec {
   std::map<std::string, double> values;
 };
 
+// An escape route (docs/harm/harm.md, "Exits"): a polyline on the floor (m, the table's axes; two or more
+// points on the table) and the clear width it needs (m). Each cross-section counts up to a wall or the
+// table's edge, or only `side_reach` (m) to each side of the path when given.
+struct ExitSpec {
+  static constexpr double default_width = 0.75;  // m (docs/harm/harm.md: the rules that bracket it)
+  std::string name;
+  std::vector<Eigen::Vector2d> path;
+  double width = default_width;
+  std::optional<double> side_reach;
+};
+
 enum class MotionSource { synthetic, file, points };
 enum class RecordFormat { at2, knet, jma_csv, columns };
 enum class MotionDimensions { one_d, three_d };
@@ -312,6 +323,7 @@ struct SceneSpec {
   // strike_thresholds.
   std::vector<Occupant> occupants;
   StrikeThresholds strike_thresholds;
+  std::vector<ExitSpec> exits;  // escape routes, measured over the run (scene/exit_observers.hpp)
   GroundMotionSpec ground_motion;
   ContactSpec contact;
   IntegratorSpec integrator;

@@ -25,6 +25,7 @@
 #define FURNITURE_FEM_SCENE_INTERNAL
 #include "detail/scene_building.hpp"
 #include "detail/scene_occupants.hpp"
+#include "detail/scene_exits.hpp"
 #include "detail/scene_restraints.hpp"
 #include "detail/scene_names.hpp"
 #undef FURNITURE_FEM_SCENE_INTERNAL
@@ -340,6 +341,13 @@ inline void validate(const SceneSpec& s) {
     if (const auto why = detail::name_problem(r.name); !why.empty()) fail(path + ".name", why);
     if (!restraint_names.insert(r.name).second) fail(path + ".name", "duplicate restraint name \"" + r.name + "\"");
     if (const auto problem = detail::restraint_problem(r, s)) fail(path + "." + problem->first, problem->second);
+  }
+  std::set<std::string> exit_names;  // an exits.csv column each
+  for (size_t k = 0; k < s.exits.size(); ++k) {
+    const std::string path = "exits[" + std::to_string(k) + "]";
+    if (const auto why = detail::name_problem(s.exits[k].name); !why.empty()) fail(path + ".name", why);
+    if (!exit_names.insert(s.exits[k].name).second) fail(path + ".name", "duplicate exit name \"" + s.exits[k].name + "\"");
+    if (const auto problem = detail::exit_problem(s.exits[k], s)) fail(path + "." + problem->first, problem->second);
   }
   std::vector<ItemInfo> built;
   for (const auto& [name, info] : bodies) built.push_back(info);

@@ -14,6 +14,7 @@
 #define FURNITURE_FEM_SCENE_INTERNAL
 #include "detail/scene_building.hpp"
 #include "detail/scene_occupants.hpp"
+#include "detail/scene_exits.hpp"
 #include "detail/scene_restraints.hpp"
 #include "detail/scene_json.hpp"
 #include "detail/scene_names.hpp"
@@ -109,6 +110,10 @@ inline nlohmann::json to_json(const SceneSpec& s) {
     j["occupants"] = json::array();
     for (const auto& o : s.occupants) j["occupants"].push_back(detail::occupant_json(o));
     j["strike_thresholds"] = detail::strike_thresholds_json(s.strike_thresholds);
+  }
+  if (!s.exits.empty()) {  // as restraints: scene.json without exits unchanged
+    j["exits"] = json::array();
+    for (const auto& e : s.exits) j["exits"].push_back(detail::exit_json(e));
   }
   j["ground_motion"] = detail::ground_motion_json(s.ground_motion);
   json contact = {{"law", std::string(scene_law(s.contact.law).name)},

@@ -52,6 +52,7 @@ struct RunResult {
   std::vector<SectionOutcome> sections;
   std::vector<RestraintOutcome> restraints;  // the scene's restraints (docs/restraints/restraints.md)
   std::vector<OccupantOutcome> occupants;    // the scene's occupants (docs/harm/occupants.md)
+  std::vector<ExitOutcome> exits;            // the scene's exits (docs/harm/harm.md, "Exits")
 };
 
 inline constexpr std::array<const char*, 6> section_components{"N", "Qy", "Qz", "Mx", "My", "Mz"};

@@ -99,6 +99,7 @@ FFEM_STUDY_ENTRY RunResult run_realisation(const StudySpec& s, long run, const s
     }
     r.restraints = sum.restraints;
     r.occupants = sum.occupants;
+    r.exits = sum.exits;
   } catch (const std::exception& e) {  // a refused scene or model: recorded, the study goes on
     r.status = "failed";
     r.diagnosis = e.what();
@@ -106,6 +107,7 @@ FFEM_STUDY_ENTRY RunResult run_realisation(const StudySpec& s, long run, const s
     r.sections.clear();
     r.restraints.clear();
     r.occupants.clear();
+    r.exits.clear();
   }
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
@@ -163,6 +165,7 @@ FFEM_STUDY_ENTRY nlohmann::json to_json(const RunResult& r) {
                       {"wall_seconds", r.wall_seconds}, {"bodies", bodies}, {"sections", sections}};
   if (!r.restraints.empty()) j["restraints"] = restraint_outcomes_json(r.restraints);  // records without: as before
   if (!r.occupants.empty()) j["occupants"] = occupant_outcomes_json(r.occupants);
+  if (!r.exits.empty()) j["exits"] = exit_outcomes_json(r.exits);  // as restraints
   return j;
 }
 
@@ -187,6 +190,8 @@ FFEM_STUDY_ENTRY RunResult run_result_from_json(const nlohmann::json& j) {
   if (j.contains("restraints"))
     for (const auto& o : j.at("restraints")) r.restraints.push_back(restraint_outcome_from_json(o));
   if (j.contains("occupants")) r.occupants = occupant_outcomes_from_json(j.at("occupants"));
+  if (j.contains("exits"))
+    for (const auto& o : j.at("exits")) r.exits.push_back(exit_outcome_from_json(o));
   return r;
 }
 
