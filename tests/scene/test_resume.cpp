@@ -81,7 +81,7 @@ SceneSpec room(int variant) {
     spec.contact.implicit = ImplicitContact::all;
     spec.duration = 0.1;
   }
-  // Variant 7: variant 3 with restraints and occupants: the tall cabinet's two weak brackets into the wall board (they
+  // Variant 7: variant 3 with restraints, occupants and an exit: the tall cabinet's two weak brackets into the wall board (they
   // yield and pull out in the run) and a slack strap on the upper cabinet; their histories, regimes and
   // break times come back from the checkpoint (restraints.csv, restraints.png, summary.json).
   if (variant == 7) {
@@ -115,6 +115,13 @@ SceneSpec room(int variant) {
     visitor.name = "visitor";
     visitor.position = Vec2(1.22, -0.5);
     spec.occupants = {clerk, visitor};
+    // And an exit along the aisle in front of the cabinets: its first blocking and narrowest section
+    // come back from the checkpoint (exits.csv, summary.json's exits).
+    ExitSpec aisle;
+    aisle.name = "aisle";
+    aisle.path = {Eigen::Vector2d(1.3, -1.5), Eigen::Vector2d(1.3, 1.5)};
+    aisle.width = 0.5;
+    spec.exits = {aisle};
     spec.outputs.figures = true;
   }
   return spec;

@@ -644,6 +644,8 @@ TEST_CASE("a run record keeps each occupant's strikes, and reads back", "[study]
   CHECK(b.exceeded == s.exceeded);
   CHECK(back.occupants[0].in_contact_at_end == o.in_contact_at_end);
   CHECK(to_json(back) == j);
+}
+
 TEST_CASE("a study variant with an exit records its outcome, and the record reads back", "[study][exits]") {
   // The block (0.4 x 0.4 m) stands on a path along x; 0.3 m counts to each side, so 0.1 m is free on
   // either side of it, below the exit's 0.25 m, and outside its band (0.125 m to each side): every run
