@@ -436,7 +436,7 @@ class Simulation {
   double nodal_mass(int n) const { return mass_[6 * n]; }
   // Kinetic energy (J) of node n's lumped mass and rotary inertia: a body's is the sum over its nodes.
   double kinetic_energy(int n) const {
-    return 0.5 * (mass_[6 * n] * v_.segment<3>(6 * n).squaredNorm() + v_.segment<3>(6 * n + 3).dot(rotary_momentum(n)));
+    return place_node_if_unplaced(n), 0.5 * (mass_[6 * n] * v_.segment<3>(6 * n).squaredNorm() + v_.segment<3>(6 * n + 3).dot(rotary_momentum(n)));
   }
   double nodal_rotary_inertia(int n) const { return mass_[6 * n + 3]; }
   // A node's rotary inertia tensor (world axes) as the dynamics use it: on a rigid body the initial

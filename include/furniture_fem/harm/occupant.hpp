@@ -8,7 +8,9 @@
 //                      with rounded ends, so that a box's distance to it is a point-to-box distance)
 //   zone_intrusion     how far an item's box reaches into a zone (m; <= 0: not touching)
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <string_view>
 
@@ -53,9 +55,9 @@ struct Occupant {
 };
 
 namespace detail {
-// The signed distance from the segment [p, q] to a box (negative inside): a convex set's signed distance
-// is convex along a segment, so golden-section search finds its minimum (to 1e-9 of the length).
-inline double segment_box_distance(const Vec3& p, const Vec3& q, const OrientedBox& box) {
+// The signed distance from the segment [p, q] to a box (negative inside), by golden-section search: a
+// convex set's signed distance is convex along a segment (to 1e-9 of the length). The general case.
+inline double segment_box_signed_distance_search(const Vec3& p, const Vec3& q, const OrientedBox& box) {
   const auto at = [&](double s) { return box.signed_distance(p + s * (q - p)); };
   const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
   double lo = 0, hi = 1, a = hi - phi * (hi - lo), b = lo + phi * (hi - lo), fa = at(a), fb = at(b);
@@ -64,6 +66,47 @@ inline double segment_box_distance(const Vec3& p, const Vec3& q, const OrientedB
     else lo = a, a = b, fa = fb, b = lo + phi * (hi - lo), fb = at(b);
   }
   return std::min({at(0.0), at(1.0), at(0.5 * (lo + hi))});
+}
+
+// The squared distance from the segment [p, q] to a box, exactly: in the box's frame each coordinate's
+// excess over the half size is linear in the segment's parameter between the points where it crosses a
+// face, so the squared distance is a quadratic there, minimised in closed form on each piece (at most
+// seven). 0 when the segment reaches the box.
+inline double segment_box_squared_distance(const Vec3& p, const Vec3& q, const OrientedBox& box) {
+  const Vec3 a = box.axes.transpose() * (p - box.centre), b = box.axes.transpose() * (q - p);
+  std::array<double, 8> cuts{};
+  int n = 0;
+  cuts[n++] = 0.0;
+  for (int i = 0; i < 3; ++i)
+    if (b[i] != 0)
+      for (double face : {box.half[i], -box.half[i]}) {
+        const double t = (face - a[i]) / b[i];
+        if (t > 0 && t < 1) cuts[n++] = t;
+      }
+  cuts[n++] = 1.0;
+  std::sort(cuts.begin(), cuts.begin() + n);
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = 0; k + 1 < n; ++k) {
+    const double t0 = cuts[k], t1 = cuts[k + 1], tm = 0.5 * (t0 + t1);
+    double ab = 0, bb = 0;  // the piece's f(t) = sum (alpha + beta t)^2
+    Vec3 alpha = Vec3::Zero(), beta = Vec3::Zero();
+    for (int i = 0; i < 3; ++i) {
+      const double v = a[i] + tm * b[i];
+      if (v > box.half[i]) alpha[i] = a[i] - box.half[i], beta[i] = b[i];
+      else if (v < -box.half[i]) alpha[i] = -a[i] - box.half[i], beta[i] = -b[i];
+      ab += alpha[i] * beta[i], bb += beta[i] * beta[i];
+    }
+    const double t = bb > 0 ? std::clamp(-ab / bb, t0, t1) : t0;
+    best = std::min(best, (alpha + t * beta).squaredNorm());
+  }
+  return best;
+}
+
+// The signed distance from the segment [p, q] to a box: exact when they are apart (the usual case), by
+// search when the segment reaches into the box.
+inline double segment_box_distance(const Vec3& p, const Vec3& q, const OrientedBox& box) {
+  const double d2 = segment_box_squared_distance(p, q, box);
+  return d2 > 0 ? std::sqrt(d2) : segment_box_signed_distance_search(p, q, box);
 }
 }  // namespace detail
 

@@ -88,7 +88,10 @@ class StrikeWatch {
       : occupant_(o), zone_(z), item_(std::move(item)), thresholds_(t) {}
 
   std::optional<Strike> observe(double t, const OrientedBox& box, double item_kinetic_energy) {
-    const double d = zone_intrusion(occupant_, zone_, box);
+    return observe(t, intrusion_of(box), item_kinetic_energy);
+  }
+  // The same with the item's intrusion into the zone already measured (intrusion_of).
+  std::optional<Strike> observe(double t, double d, double item_kinetic_energy) {
     std::optional<Strike> done;
     const double rate = t > t_prev_ ? (d - d_prev_) / (t - t_prev_) : 0.0;
     if (form_) {
@@ -108,6 +111,7 @@ class StrikeWatch {
   }
   // The strike under way when the run ends, closed there; none if there is none.
   std::optional<Strike> finish() { return form_ ? std::optional<Strike>(close()) : std::nullopt; }
+  double intrusion_of(const OrientedBox& box) const { return zone_intrusion(occupant_, zone_, box); }
   bool touching() const { return d_prev_ > 0; }  // the item is in the zone after the last step
   double intrusion() const { return d_prev_; }   // m
 
