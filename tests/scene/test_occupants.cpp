@@ -5,6 +5,8 @@
 
 #include <furniture_fem/scene/scene_runner.hpp>
 
+#include "../support/input_errors.hpp"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -49,12 +51,7 @@ SceneSpec read(const json& j) {
 }
 
 std::string read_error(const json& j) {
-  try {
-    read(j);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
+  return ffem_test::input_error([&] { read(j); });
 }
 
 struct Expected {
