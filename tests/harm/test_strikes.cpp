@@ -259,3 +259,57 @@ TEST_CASE("A segment's exact distance to a box agrees with a search along it", "
   CHECK(apart > 500);  // both kinds of case were drawn
   CHECK(apart < 1900);
 }
+
+TEST_CASE("A person standing as an obstacle: a strike is the contact force it carries", "[harm][strike][obstacle]") {
+  // A box approaching a head at 1 m/s meets it at step 50: the contact pushes 6 kN for 100 steps of 0.1 ms,
+  // then none. One strike, half a step before the first force; peak 6 kN; impulse the trapezoid of the
+  // samples (0 at the onset, 6 kN half a step later and for 99 steps more, 0 a step after: 99.75 steps of
+  // 6 kN); HIC15 of 6 kN / 4.5 kg over its 10 ms against the square pulse's T (F / m g)^2.5 within 2 %
+  // (the ramps at its ends); above the HIC and the head force thresholds. Then it rests:
+  // a contact lost for a step and found at rest is no new strike; after backing away and returning at
+  // 0.5 m/s it is a second one; a strike still pushing after `longest` is closed there.
+  Occupant o;
+  o.name = "guard";
+  o.obstacle = true;
+  StrikeWatch watch(o, OccupantZone::head, "box");
+  const double dt = 1e-4, P = 6000.0;
+  std::vector<Strike> strikes;
+  double t = 0, d = -0.05;
+  const auto step = [&](double v, double F) {
+    t += dt, d += v * dt;
+    if (auto s = watch.observe_contact(t, d, 3.0, F)) strikes.push_back(*s);
+  };
+  for (int i = 0; i < 50; ++i) step(1.0, 0.0);
+  const double t_first = t + dt;
+  for (int i = 0; i < 100; ++i) step(1.0, P);
+  step(0.0, 0.0);
+  REQUIRE(strikes.size() == 1);
+  const Strike& s = strikes[0];
+  CHECK(s.time == Approx(t_first - 0.5 * dt).margin(1e-12));
+  CHECK(s.relative_speed == Approx(1.0).epsilon(1e-9));
+  CHECK(s.kinetic_energy == Approx(3.0));
+  CHECK(s.peak_force == P);
+  CHECK(s.impulse == Approx(99.75 * dt * P).epsilon(1e-9));
+  CHECK(s.duration == Approx(99.5 * dt).epsilon(1e-9));
+  CHECK(s.hic15 == Approx(0.01 * std::pow(P / o.head.mass / standard_gravity, 2.5)).epsilon(0.02));
+  CHECK(s.exceeded == std::vector<std::string>{"hic15", "head_force"});
+  // Resting: the force comes and goes at rest.
+  for (int i = 0; i < 100; ++i) step(0.0, i % 7 == 3 ? 0.0 : 50.0);
+  CHECK(strikes.size() == 1);
+  // Backs away, returns at 0.5 m/s.
+  for (int i = 0; i < 100; ++i) step(-0.5, 0.0);
+  for (int i = 0; i < 100; ++i) step(0.5, 0.0);
+  for (int i = 0; i < 10; ++i) step(0.5, 300.0);
+  step(-0.5, 0.0);
+  REQUIRE(strikes.size() == 2);
+  CHECK(strikes[1].relative_speed == Approx(0.5).epsilon(1e-9));
+  CHECK(strikes[1].peak_force == 300.0);
+  // Pushing for longer than `longest`: closed there, not opened again while it pushes.
+  for (int i = 0; i < 100; ++i) step(-0.5, 0.0);
+  for (int i = 0; i < 100; ++i) step(0.5, 0.0);
+  for (int i = 0; i < static_cast<int>(1.5 * StrikeWatch::longest / dt); ++i) step(i == 0 ? 0.5 : 0.0, 100.0);
+  REQUIRE(strikes.size() == 3);
+  CHECK(strikes[2].duration == Approx(StrikeWatch::longest).margin(dt));
+  CHECK(watch.touching());
+  CHECK_FALSE(watch.finish());
+}

@@ -104,8 +104,8 @@ SceneSpec room(int variant) {
     strap.wall = "wall_plus_x";
     strap.values = {{"slack", 0.002}};
     spec.restraints.push_back(strap);
-    // And two occupants: the watches' last intrusions and a strike under way come back from the
-    // checkpoint (strikes.csv, summary.json's occupants).
+    // And two occupants, one a sensor and one a rigid obstacle: the watches' last intrusions and forces
+    // and a strike under way come back from the checkpoint (strikes.csv, summary.json's occupants).
     Occupant clerk;
     clerk.name = "clerk";
     clerk.position = Vec2(-0.1, 0.0);
@@ -114,6 +114,7 @@ SceneSpec room(int variant) {
     Occupant visitor;
     visitor.name = "visitor";
     visitor.position = Vec2(1.22, -0.5);
+    visitor.obstacle = true;  // a rigid obstacle: its strikes' force records come back too
     spec.occupants = {clerk, visitor};
     // And an exit along the aisle in front of the cabinets: its first blocking and narrowest section
     // come back from the checkpoint (exits.csv, summary.json's exits).

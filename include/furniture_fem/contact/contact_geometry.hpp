@@ -213,6 +213,33 @@ inline std::optional<PointPlaneDistance> point_rectangle(const Vec3& p_WN, const
 }
 
 // ---------------------------------------------------------------------------------------------
+// Point against a capsule.
+
+// A capsule: the points within `radius` of the segment [a, b] (a == b: a sphere). A person standing
+// in the room as a rigid obstacle is two of them, a body and a head (harm/occupant.hpp).
+struct Capsule {
+  Vec3 a = Vec3::Zero(), b = Vec3::Zero();
+  double radius = 0;
+};
+
+// Node N against a capsule: the signed distance from its surface (negative inside), the foot on the
+// surface and the outward normal there, as for a plane tangent to the capsule at the foot. A node on
+// the axis itself has no normal: std::nullopt.
+inline std::optional<PointPlaneDistance> point_capsule(const Vec3& p_WN, const Capsule& c) {
+  const Vec3 ab = c.b - c.a;
+  const double len2 = ab.squaredNorm();
+  const double s = len2 > 0 ? std::clamp((p_WN - c.a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  const Vec3 r = p_WN - (c.a + s * ab);
+  const double l = r.norm();
+  if (!(l > 1e-12)) return std::nullopt;
+  PointPlaneDistance d;
+  d.n_W = r / l;
+  d.signed_distance = l - c.radius;
+  d.p_WF = p_WN - d.signed_distance * d.n_W;
+  return d;
+}
+
+// ---------------------------------------------------------------------------------------------
 // Point and segment against a triangle.
 
 struct PointTriangleClosest {

@@ -161,6 +161,16 @@ class RoomContact {
     obstacles_.push_back(std::move(obstacle));
     ++nodes_read_revision_;
   }
+  // A rigid capsule fixed to the table (a person as an obstacle, harm/occupant.hpp): every node within
+  // its member's half width of the surface is pushed out, as by a mesh obstacle (the body's wall
+  // parameters, explicit); its forces are reported per body as PairForce::capsule_id(id).
+  void add_capsule(const Capsule& capsule, int id) {
+    if (!(capsule.radius > 0) || !capsule.a.allFinite() || !capsule.b.allFinite())
+      throw ModelError("RoomContact: capsule obstacle " + std::to_string(id) + " needs a positive radius and finite ends (radius " +
+                       std::to_string(capsule.radius) + ")");
+    capsules_.push_back({capsule, PairForce::capsule_id(id)});
+    ++nodes_read_revision_;
+  }
   // Fastening devices (restraints/): each one's force at its node, in f and (implicit) inside the step as
   // a floor contact's, its regime compared within the step as a contact's status. Before the first step.
   void set_restraints(RestraintSet restraints);
@@ -219,7 +229,7 @@ class RoomContact {
   // (Simulation::RigidFields); nodes_read_revision() changes whenever the answer may.
   bool nodes_read(const Model& model, int body, std::vector<int>& out) const {
     out.clear();
-    if (!obstacles_.empty() || (model.num_bodies() > 1 && (!hulls_on_ || any_element_pairs_))) return false;
+    if (!obstacles_.empty() || !capsules_.empty() || (model.num_bodies() > 1 && (!hulls_on_ || any_element_pairs_))) return false;
     for (int n : model.body(body).nodes)
       if (plane_node_[n]) out.push_back(n);
     if (body < static_cast<int>(surface_groups_.size()))
@@ -267,9 +277,10 @@ class RoomContact {
       if (!hulls_on_ || any_element_pairs_) element_contacts(view, f);
       if (hulls_on_) hull_contacts(view, f);
     }
-    if (!obstacles_.empty()) {
+    if (!obstacles_.empty() || !capsules_.empty()) {
       const auto t_obstacles = clock::now();
-      obstacle_contacts(view, f);
+      if (!obstacles_.empty()) obstacle_contacts(view, f);
+      if (!capsules_.empty()) capsule_contacts(view, f);
       timings_.obstacles += seconds_since(t_obstacles);
     }
   }
@@ -854,6 +865,7 @@ class RoomContact {
   static Vec3 reported_pair_force(int body_a, int body_b, const SegmentPairForces& nf);
 
   void obstacle_contacts(const ContactView& view, Eigen::VectorXd& f);
+  void capsule_contacts(const ContactView& view, Eigen::VectorXd& f);
 
   // ---- Rigid pairs by their hulls (set_rigid_pair_hulls) ----
 
@@ -912,6 +924,11 @@ class RoomContact {
   std::vector<BodyContact> bodies_;
   std::vector<RigidPlane> planes_;
   std::vector<MeshObstacle> obstacles_;
+  struct CapsuleObstacle {
+    Capsule shape;
+    int pair_id;
+  };
+  std::vector<CapsuleObstacle> capsules_;
   std::vector<double> half_width_;
   std::vector<char> plane_node_;  // whether plane_contacts tests the node (a rigid body: its hull vertices)
   std::vector<int> plane_nodes_;  // those nodes, ascending

@@ -9,6 +9,7 @@
 //   ImpactForm        mass, stiffness, the contact's natural period
 //   FormStrike        the form driven by an intrusion history, step by step: force, impulse, peak,
 //                     and the acceleration history a head injury criterion is taken on
+//   ForceStrike       a person standing as a rigid obstacle: the contact force it carries, as the force on the form
 //   head_injury_criterion   HIC over windows up to a length (15 ms: HIC15, 49 CFR 571.208 S6.2)
 #include <algorithm>
 #include <cmath>
@@ -96,6 +97,43 @@ class FormStrike {
   std::vector<double> t_, a_g_;  // the form's acceleration (g) at the sub-steps' ends, from the onset
 
   double force(double d) const { return form_.stiffness * std::max(0.0, d - x_); }
+};
+
+// A strike on a person standing as a rigid obstacle (Occupant::obstacle): the contact force the zone
+// carries, sampled at the run's steps and linear between them, is the force on the zone's form: its
+// impulse and peak, and HIC of the acceleration F / m the form would have under it (the obstacle does not
+// move; a free head form of mass m under the same force would).
+class ForceStrike {
+ public:
+  explicit ForceStrike(const ImpactForm& form) : mass_(form.mass) {
+    t_.push_back(0.0);
+    a_g_.push_back(0.0);
+  }
+  // The force F (N) at t seconds after the onset (t after the last sample).
+  void add(double t, double F) {
+    if (!(t > t_.back())) return;
+    impulse_ += 0.5 * (t - t_.back()) * (f_last_ + F);
+    f_last_ = F;
+    peak_ = std::max(peak_, F);
+    if (F > 0) contact_end_ = t;
+    t_.push_back(t);
+    a_g_.push_back(F / mass_ / standard_gravity);
+  }
+  double peak_force() const { return peak_; }       // N
+  double impulse() const { return impulse_; }       // N s
+  double duration() const { return contact_end_; }  // s from the onset to the last sample with a force
+  double hic(double window = 0.015) const { return head_injury_criterion(t_, a_g_, window); }
+
+  template <class Self, class Archive>
+    requires std::is_same_v<std::remove_const_t<Self>, ForceStrike>
+  friend void transfer_state(Self& f, Archive& ar) {
+    ar(f.mass_, f.impulse_, f.peak_, f.contact_end_, f.f_last_, f.t_, f.a_g_);
+  }
+
+ private:
+  double mass_;
+  double impulse_ = 0, peak_ = 0, contact_end_ = 0, f_last_ = 0;
+  std::vector<double> t_, a_g_;  // the samples: time from the onset, F / m in g
 };
 
 }  // namespace furniture_fem

@@ -1,7 +1,8 @@
 #pragma once
 // furniture_fem/harm/occupant.hpp: a person in the room (docs/harm/occupants.md): a body-sized
 // vertical cylinder standing on the floor with a head on top, fixed to the floor (the table frame). An
-// occupant is a sensor: it records what reaches it and does not push the furniture back.
+// occupant is a sensor by default: it records what reaches it and does not push the furniture back; as
+// a rigid obstacle (`obstacle`) its head and body are capsules the furniture's nodes are pushed out of.
 //
 //   Occupant           where, posture, sizes, and the impact forms of its head and body
 //   OccupantZone       head (a sphere) or body (the cylinder below the head, as a capsule: a cylinder
@@ -44,6 +45,7 @@ struct Occupant {
   double head_radius = 0.10;     // m
   ImpactForm head{4.5, 1.0e6};   // Hybrid III head's mass; a skull's stiffness (docs/harm/occupants.md)
   ImpactForm body{35.0, 1.0e5};  // an adult's trunk; a chosen stiffness (its verdicts do not use it)
+  bool obstacle = false;         // a rigid obstacle (pushes the furniture back) rather than a sensor
 
   Vec3 head_centre() const { return Vec3(position.x(), position.y(), floor_z + height - head_radius); }
   // The body's axis, from the floor to the bottom of the head, as a capsule's segment.
@@ -53,6 +55,10 @@ struct Occupant {
   }
   const ImpactForm& form(OccupantZone z) const { return z == OccupantZone::head ? head : body; }
 };
+
+// The number of occupant j's zone among the capsules of people standing as obstacles (the contact
+// reports its forces as PairForce::capsule_id of it): 2 j for the head, 2 j + 1 for the body.
+inline int occupant_capsule(int j, OccupantZone z) { return 2 * j + (z == OccupantZone::head ? 0 : 1); }
 
 namespace detail {
 // The signed distance from the segment [p, q] to a box (negative inside), by golden-section search: a

@@ -109,10 +109,42 @@ class StrikeWatch {
     d_prev_ = d, t_prev_ = t, ke_prev_ = item_kinetic_energy;
     return done;
   }
+  // A person standing as a rigid obstacle (Occupant::obstacle): the strike is the contact force F (N)
+  // the item carries against the zone this step, with its intrusion d and energy as for observe(). It
+  // opens when the force appears (its onset, speed and energy half a step before this one: the contact
+  // began between the steps), at the item's first contact or at a later one while it approaches at
+  // rearm_speed or faster (a resting contact lost for a step and found again is not a new strike); it
+  // closes when the force is gone, or after `longest` (then not again before the force is gone).
+  std::optional<Strike> observe_contact(double t, double d, double item_kinetic_energy, double F) {
+    std::optional<Strike> done;
+    const double rate = t > t_prev_ ? (d - d_prev_) / (t - t_prev_) : 0.0;
+    if (pushed_) {
+      if (F > 0 && t - strike_.time <= longest) {
+        pushed_->add(t - strike_.time, F);
+      } else {
+        if (!(F > 0)) pushed_->add(t - strike_.time, 0.0);  // gone between the steps, linearly
+        done = close(), armed_ = !(F > 0);
+      }
+    } else if (F > 0 && armed_ && t_prev_ >= 0 && t > t_prev_ && (!struck_ || rate >= rearm_speed)) {
+      strike_ = Strike{};
+      strike_.occupant = occupant_.name, strike_.item = item_, strike_.zone = zone_;
+      strike_.time = t - 0.5 * (t - t_prev_);
+      strike_.relative_speed = rate;
+      strike_.kinetic_energy = 0.5 * (ke_prev_ + item_kinetic_energy);
+      pushed_.emplace(occupant_.form(zone_));
+      pushed_->add(t - strike_.time, F);
+      struck_ = true;
+    } else {
+      armed_ = t_prev_ >= 0 ? armed_ || !(F > 0) : !(F > 0);  // touching at the start is no strike
+    }
+    d_prev_ = d, t_prev_ = t, ke_prev_ = item_kinetic_energy, f_prev_ = F;
+    return done;
+  }
   // The strike under way when the run ends, closed there; none if there is none.
-  std::optional<Strike> finish() { return form_ ? std::optional<Strike>(close()) : std::nullopt; }
+  std::optional<Strike> finish() { return form_ || pushed_ ? std::optional<Strike>(close()) : std::nullopt; }
   double intrusion_of(const OrientedBox& box) const { return zone_intrusion(occupant_, zone_, box); }
-  bool touching() const { return d_prev_ > 0; }  // the item is in the zone after the last step
+  // The item is in the zone after the last step (as an obstacle: pushes on it).
+  bool touching() const { return occupant_.obstacle ? f_prev_ > 0 : d_prev_ > 0; }
   double intrusion() const { return d_prev_; }   // m
 
   static constexpr double longest = 0.5;       // s
@@ -122,14 +154,9 @@ class StrikeWatch {
   template <class Self, class Archive>
     requires std::is_same_v<std::remove_const_t<Self>, StrikeWatch>
   friend void transfer_state(Self& w, Archive& ar) {
-    ar(w.d_prev_, w.t_prev_, w.ke_prev_, w.armed_at_, w.base_, w.armed_, w.strike_);
-    bool striking = w.form_.has_value();
-    ar(striking);
-    if constexpr (!std::is_const_v<Self>) {
-      if (striking && !w.form_) w.form_.emplace(w.occupant_.form(w.zone_));
-      if (!striking) w.form_.reset();
-    }
-    if (striking) ar(*w.form_);
+    ar(w.d_prev_, w.t_prev_, w.ke_prev_, w.f_prev_, w.armed_at_, w.base_, w.armed_, w.struck_, w.strike_);
+    transfer_optional(w.form_, w.occupant_.form(w.zone_), ar);
+    transfer_optional(w.pushed_, w.occupant_.form(w.zone_), ar);
   }
 
  private:
@@ -137,12 +164,30 @@ class StrikeWatch {
   OccupantZone zone_;
   std::string item_;
   StrikeThresholds thresholds_;
-  double d_prev_ = 0, t_prev_ = -1, ke_prev_ = 0;
+  double d_prev_ = 0, t_prev_ = -1, ke_prev_ = 0, f_prev_ = 0;
   double armed_at_ = 0;  // the intrusion a strike starts at: 0, or the depth an item in the zone reached
   double base_ = 0;      // the strike under way's armed_at_: its form sees the intrusion beyond it
   bool armed_ = true;    // after a strike, false until the item slows below rearm_speed or leaves
-  std::optional<FormStrike> form_;
+  bool struck_ = false;   // as an obstacle: this item has struck this zone before
+  std::optional<FormStrike> form_;     // a sensor's strike under way
+  std::optional<ForceStrike> pushed_;  // an obstacle's strike under way
   Strike strike_;
+
+  // An optional strike record through a checkpoint: whether there is one, then it.
+  template <class T, class Archive>
+  static void transfer_optional(std::optional<T>& x, const ImpactForm& form, Archive& ar) {
+    bool present = x.has_value();
+    ar(present);
+    if (present && !x) x.emplace(form);
+    if (!present) x.reset();
+    if (present) ar(*x);
+  }
+  template <class T, class Archive>
+  static void transfer_optional(const std::optional<T>& x, const ImpactForm&, Archive& ar) {
+    bool present = x.has_value();
+    ar(present);
+    if (present) ar(*x);
+  }
 
   void open(double t, double d, double ke) {
     base_ = armed_at_;
@@ -158,12 +203,16 @@ class StrikeWatch {
     form_->advance(0.0, d - base_, t - strike_.time);
   }
   Strike close() {
-    strike_.duration = form_->duration();
-    strike_.peak_force = form_->peak_force();
-    strike_.impulse = form_->impulse();
-    if (zone_ == OccupantZone::head) strike_.hic15 = form_->hic(0.015);
+    const auto take = [&](const auto& record) {
+      strike_.duration = record.duration();
+      strike_.peak_force = record.peak_force();
+      strike_.impulse = record.impulse();
+      if (zone_ == OccupantZone::head) strike_.hic15 = record.hic(0.015);
+    };
+    if (form_) take(*form_);
+    else take(*pushed_);
     strike_.exceeded = exceeded_thresholds(strike_, thresholds_);
-    form_.reset();
+    form_.reset(), pushed_.reset();
     return strike_;
   }
 };

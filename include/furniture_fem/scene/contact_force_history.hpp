@@ -21,7 +21,8 @@ namespace furniture_fem {
 // contact_forces.csv: t, then three columns per pair of contact partners, named by the item and the
 // partner: "<item>|floor_fx", "<item>|walls_fx" (every wall together), "<item>|obstacles_fx" (every
 // mesh obstacle together; only when the scene has obstacles), "<item>|ceiling_fx" (only when the scene
-// has a ceiling) and "<item>|<other item>_fx" for every
+// has a ceiling), "<item>|<occupant>_head_fx" and "_body_fx" (a person standing as an obstacle) and
+// "<item>|<other item>_fx" for every
 // pair of items (the item first in the scene's order first), _fy, _fz likewise: the force on the first
 // from the second (N), 0 when they do not touch. Each is its mean over the steps since the previous
 // row: a penalty contact at rest chatters from one step to the next, and single steps sampled one
@@ -40,6 +41,12 @@ class ContactForceHistory : public RunObserver {
       for (int a = 0; a < nb; ++a) out.push_back({{a, PairForce::obstacle_id}, name(a) + "|obstacles"});
     if (run.spec.ceiling)
       for (int a = 0; a < nb; ++a) out.push_back({{a, PairForce::ceiling_id}, name(a) + "|ceiling"});
+    for (std::size_t j = 0; j < run.spec.occupants.size(); ++j)
+      if (run.spec.occupants[j].obstacle)
+        for (OccupantZone z : {OccupantZone::head, OccupantZone::body})
+          for (int a = 0; a < nb; ++a)
+            out.push_back({{a, PairForce::capsule_id(occupant_capsule(static_cast<int>(j), z))},
+                           name(a) + "|" + run.spec.occupants[j].name + "_" + std::string(to_string(z))});
     if (run.spec.outputs.pair_columns(nb))
       for (int a = 0; a < nb; ++a)
         for (int b = a + 1; b < nb; ++b) out.push_back({{a, b}, name(a) + "|" + name(b)});

@@ -2,7 +2,8 @@
 // furniture_fem/scene/occupant_observers.hpp: what the run records of its occupants (harm/,
 // docs/harm/occupants.md). A built-in observer of observers.hpp, only for a scene with occupants.
 //
-//   OccupantStrikes   every item's box against every occupant's head and body after each step: each
+//   OccupantStrikes   every item's box against every occupant's head and body after each step (or, for a
+//                     person standing as an obstacle, the contact force each zone carries): each
 //                     strike with its measures and verdict, and the items in contact with someone at the end
 //                     -> RunSummary::occupants (summary.json, the final print), strikes.csv
 #include <algorithm>
@@ -77,7 +78,9 @@ class OccupantStrikes : public RunObserver {
     for (const Occupant& o : run.spec.occupants)
       for (std::size_t i = 0; i < run.items.size(); ++i)
         for (OccupantZone z : {OccupantZone::head, OccupantZone::body})
-          watches_.push_back({o.name, i, StrikeWatch(o, z, run.items[i].name, run.spec.strike_thresholds)});
+          watches_.push_back({o.name, i, o.obstacle, StrikeWatch(o, z, run.items[i].name, run.spec.strike_thresholds)});
+    item_of_body_.assign(run.model.num_bodies(), -1);
+    for (std::size_t i = 0; i < run.items.size(); ++i) item_of_body_[run.items[i].body] = static_cast<int>(i);
     observe(run);
   }
   void after_step(const RunView& run, const StepInfo&) override { observe(run); }
@@ -114,8 +117,10 @@ class OccupantStrikes : public RunObserver {
   struct Watch {
     std::string occupant;
     std::size_t item;
+    bool obstacle;  // the occupant stands as a rigid obstacle: strikes are its contact forces
     StrikeWatch watch;
   };
+  std::vector<int> item_of_body_;
   std::vector<Watch> watches_;
   std::vector<Strike> strikes_;  // finished (sorted by onset at the end)
 
@@ -134,8 +139,29 @@ class OccupantStrikes : public RunObserver {
     for (std::size_t i = 0; i < run.items.size(); ++i)
       if (near[i])
         for (int n : run.model.body(run.items[i].body).nodes) energies[i] += run.sim.kinetic_energy(n);
-    for (std::size_t k = 0; k < watches_.size(); ++k)
-      if (auto s = watches_[k].watch.observe(run.sim.time(), depth[k], energies[watches_[k].item])) strikes_.push_back(*s);
+    const std::vector<double> pushed = capsule_forces(run);
+    for (std::size_t k = 0; k < watches_.size(); ++k) {
+      Watch& w = watches_[k];
+      const double t = run.sim.time(), ke = energies[w.item];
+      if (auto s = w.obstacle ? w.watch.observe_contact(t, depth[k], ke, pushed[k]) : w.watch.observe(t, depth[k], ke))
+        strikes_.push_back(*s);
+    }
+  }
+  // Per watch, the contact force its zone carries from its item (N; 0 for a sensor's): the pair forces of
+  // the occupants' capsules (occupant_capsule: 2 j for occupant j's head, 2 j + 1 its body), in the
+  // watches' order (occupant, item, head then body).
+  std::vector<double> capsule_forces(const RunView& run) const {
+    std::vector<double> out(watches_.size(), 0.0);
+    const std::size_t items = run.items.size();
+    for (const PairForce& pf : run.sim.pair_forces()) {
+      if (!PairForce::is_capsule(pf.body_b) || pf.body_a < 0 || pf.body_a >= static_cast<int>(item_of_body_.size()) ||
+          item_of_body_[pf.body_a] < 0)
+        continue;
+      const int k = PairForce::capsule_index(pf.body_b);
+      const std::size_t j = static_cast<std::size_t>(k / 2), i = static_cast<std::size_t>(item_of_body_[pf.body_a]);
+      out[(j * items + i) * 2 + static_cast<std::size_t>(k % 2)] += pf.force_on_a.norm();
+    }
+    return out;
   }
   static constexpr double reach_ = 0.5;  // m
   std::vector<std::vector<int>> corner_nodes_;  // per item, its nodes nearest its box's corners

@@ -377,6 +377,14 @@ inline void check_ceiling_clear(const SceneSpec& spec, const Model& model, const
   }
 }
 
+// A person standing as a rigid obstacle (Occupant::obstacle): its head and body zones as capsules, the
+// body's axis down to the floor (legs stand on it: a low item does not slip under a rounded end).
+inline void add_occupant_capsules(RoomContact& contact, const Occupant& o, int i) {
+  const Vec3 foot(o.position.x(), o.position.y(), o.floor_z);
+  contact.add_capsule(Capsule{o.head_centre(), o.head_centre(), o.head_radius}, occupant_capsule(i, OccupantZone::head));
+  contact.add_capsule(Capsule{foot, o.body_top(), o.body_radius}, occupant_capsule(i, OccupantZone::body));
+}
+
 }  // namespace detail
 
 // A scene turned into a composed solver: the model, its items, the table motion and the simulation
@@ -411,6 +419,8 @@ struct SceneSimulation {
     detail::check_obstacles_clear(spec, *model, items, obstacles);
     detail::check_ceiling_clear(spec, *model, items);
     for (auto& ob : obstacles) contact.add_obstacle(std::move(ob));
+    for (std::size_t i = 0; i < spec.occupants.size(); ++i)
+      if (spec.occupants[i].obstacle) detail::add_occupant_capsules(contact, spec.occupants[i], static_cast<int>(i));
     contact.set_restraints(detail::scene_restraint_set(spec, *model, items, detail::scene_ceiling_z(spec)));
     switch (spec.integrator.scheme) {
       case IntegratorKind::paper_newmark: integrator = RuntimeIntegrator::from(Newmark::paper()); break;

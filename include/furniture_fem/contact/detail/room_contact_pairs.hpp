@@ -171,6 +171,29 @@ inline void RoomContact::obstacle_contacts(const ContactView& view, Eigen::Vecto
   }
 }
 
+inline void RoomContact::capsule_contacts(const ContactView& view, Eigen::VectorXd& f) {
+  const Model& model = view.model;
+  for (const CapsuleObstacle& c : capsules_) {
+    // A node farther than the capsule's radius and its own half width from the capsule's box is skipped
+    // before the distance (most nodes of a room are).
+    const Vec3 lo = c.shape.a.cwiseMin(c.shape.b), hi = c.shape.a.cwiseMax(c.shape.b);
+    for (int n = 0; n < model.num_nodes(); ++n) {
+      const double L = half_width_[n], reach = c.shape.radius + L;
+      const Vec3& x = view.x[n];
+      if (((x - hi).array() > reach).any() || ((lo - x).array() > reach).any()) continue;
+      const auto d = point_capsule(x, c.shape);
+      if (!d || d->signed_distance > L) continue;
+      const int body = model.node(n).body;
+      const NodeOnPlane node{x, view.v.template segment<3>(6 * n), L, view.dt, Vec3::Zero(), Vec3::Zero()};
+      ContactState st;
+      const ContactForce cf = detail::node_force(*law_, node, d->signed_distance, d->n_W, bodies_[body].wall, st);
+      f.template segment<3>(6 * n) += cf.on_a;
+      add_pair_force(body, c.pair_id, cf.on_a);
+      ++active_;
+    }
+  }
+}
+
 inline const detail::SupportGeometry& RoomContact::hull_of(int body) const {
   return surface_at(body) ? surface_groups_[body].front().geometry : support_[body];
 }

@@ -73,7 +73,7 @@ inline std::optional<std::pair<std::string, std::string>> occupant_problem(const
 inline Occupant read_occupant(const nlohmann::json& v, const std::string& path, const std::string& source,
                               std::size_t index, const SceneSpec& s) {
   const ObjectReader o(v, path, source);
-  std::vector<std::string_view> allowed = {"name", "position", "posture"};
+  std::vector<std::string_view> allowed = {"name", "position", "posture", "obstacle"};
   for (const OccupantNumber& n : occupant_numbers()) allowed.push_back(n.key);
   o.allow_only(allowed, "key of an occupant");
   Occupant occ;
@@ -92,13 +92,15 @@ inline Occupant read_occupant(const nlohmann::json& v, const std::string& path, 
   occ.position = Vec2(p[0].get<double>(), p[1].get<double>());
   occ.floor_z = s.table.floor_z;
   for (const OccupantNumber& n : occupant_numbers()) occupant_value(occ, n) = o.number(n.key, occupant_value(occ, n));
+  occ.obstacle = o.boolean("obstacle", false);
   return occ;
 }
 
 inline nlohmann::json occupant_json(const Occupant& o) {
   nlohmann::json j = {{"name", o.name},
                       {"position", {o.position.x(), o.position.y()}},
-                      {"posture", std::string(to_string(o.posture))}};
+                      {"posture", std::string(to_string(o.posture))},
+                      {"obstacle", o.obstacle}};
   for (const OccupantNumber& n : occupant_numbers()) j[std::string(n.key)] = occupant_value(o, n);
   return j;
 }
