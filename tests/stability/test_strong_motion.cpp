@@ -149,13 +149,17 @@ TEST_CASE("stability: every kind at full fidelity under the stiff law, at rest",
 
 TEST_CASE("stability: the stiff law at full fidelity under the built-in 3-D motion", "[stability][stiff]") {
   for (const std::string kind : {"desk", "tall_cabinet", "separated_cabinets"}) {
-    SceneSpec s = stiff_alone(kind, 2.0);
+    // The separated cabinets refactorise nearly every step (their item-item contact changes: 2130
+    // factorisations in 2 s, 239 of the short suite's 433 s): the short version runs them 1.2 s, past the
+    // 0.4 to 0.9 s where they diverged; the full version 2 s like the others.
+    const double duration = kind == "separated_cabinets" && !full_mode() ? 1.2 : 2.0;
+    SceneSpec s = stiff_alone(kind, duration);
     s.ground_motion.source = MotionSource::synthetic;
     s.ground_motion.dimensions = MotionDimensions::three_d;
-    s.ground_motion.pga = 8.0;  // the main job's motion, its first 2 s
+    s.ground_motion.pga = 8.0;  // the main job's motion, its first seconds
     const RunSummary sum = run_scene(s, summary_only());
-    report("stiff law, full fidelity, " + kind + " alone, built-in 3-D motion (pga 8 m/s^2), 2 s", sum, "< 1",
-           "factorisations " + std::to_string(sum.factorizations));
+    report("stiff law, full fidelity, " + kind + " alone, built-in 3-D motion (pga 8 m/s^2), " + num(duration) + " s", sum,
+           "< 1", "factorisations " + std::to_string(sum.factorizations));
     INFO(kind << ": " << sum.status << " at " << sum.t_end << " s: " << sum.diagnosis);
     REQUIRE(sum.status == "completed");
     CHECK(sum.max_energy_imbalance < 1.0);

@@ -164,13 +164,7 @@ class RoomContact {
   // A rigid capsule fixed to the table (a person as an obstacle, harm/occupant.hpp): every node within
   // its member's half width of the surface is pushed out, as by a mesh obstacle (the body's wall
   // parameters, explicit); its forces are reported per body as PairForce::capsule_id(id).
-  void add_capsule(const Capsule& capsule, int id) {
-    if (!(capsule.radius > 0) || !capsule.a.allFinite() || !capsule.b.allFinite())
-      throw ModelError("RoomContact: capsule obstacle " + std::to_string(id) + " needs a positive radius and finite ends (radius " +
-                       std::to_string(capsule.radius) + ")");
-    capsules_.push_back({capsule, PairForce::capsule_id(id)});
-    ++nodes_read_revision_;
-  }
+  void add_capsule(const Capsule& capsule, int id);
   // Fastening devices (restraints/): each one's force at its node, in f and (implicit) inside the step as
   // a floor contact's, its regime compared within the step as a contact's status. Before the first step.
   void set_restraints(RestraintSet restraints);
@@ -924,11 +918,7 @@ class RoomContact {
   std::vector<BodyContact> bodies_;
   std::vector<RigidPlane> planes_;
   std::vector<MeshObstacle> obstacles_;
-  struct CapsuleObstacle {
-    Capsule shape;
-    int pair_id;
-  };
-  std::vector<CapsuleObstacle> capsules_;
+  std::vector<std::pair<Capsule, int>> capsules_;  // each with its pair id (PairForce::capsule_id)
   std::vector<double> half_width_;
   std::vector<char> plane_node_;  // whether plane_contacts tests the node (a rigid body: its hull vertices)
   std::vector<int> plane_nodes_;  // those nodes, ascending

@@ -1,5 +1,5 @@
 #pragma once
-// furniture_fem/contact/detail/room_contact_pairs.hpp: RoomContact's item-item contact: element pairs by the broad phase, mesh obstacles, rigid pairs by their hulls.
+// furniture_fem/contact/detail/room_contact_pairs.hpp: RoomContact's item-item contact: element pairs by the broad phase, mesh and capsule obstacles, rigid pairs by their hulls.
 // Included by contact/room_contact.hpp right after the class: member functions of RoomContact defined out of
 // the class (declared, with what they do, in it); not a header of its own.
 #ifndef FURNITURE_FEM_CONTACT_INTERNAL
@@ -171,24 +171,32 @@ inline void RoomContact::obstacle_contacts(const ContactView& view, Eigen::Vecto
   }
 }
 
+inline void RoomContact::add_capsule(const Capsule& capsule, int id) {
+  if (!(capsule.radius > 0) || !capsule.a.allFinite() || !capsule.b.allFinite())
+    throw ModelError("RoomContact: capsule obstacle " + std::to_string(id) + " needs a positive radius and finite ends (radius " +
+                     std::to_string(capsule.radius) + ")");
+  capsules_.push_back({capsule, PairForce::capsule_id(id)});
+  ++nodes_read_revision_;
+}
+
 inline void RoomContact::capsule_contacts(const ContactView& view, Eigen::VectorXd& f) {
   const Model& model = view.model;
-  for (const CapsuleObstacle& c : capsules_) {
+  for (const auto& [shape, pair_id] : capsules_) {
     // A node farther than the capsule's radius and its own half width from the capsule's box is skipped
     // before the distance (most nodes of a room are).
-    const Vec3 lo = c.shape.a.cwiseMin(c.shape.b), hi = c.shape.a.cwiseMax(c.shape.b);
+    const Vec3 lo = shape.a.cwiseMin(shape.b), hi = shape.a.cwiseMax(shape.b);
     for (int n = 0; n < model.num_nodes(); ++n) {
-      const double L = half_width_[n], reach = c.shape.radius + L;
+      const double L = half_width_[n], reach = shape.radius + L;
       const Vec3& x = view.x[n];
       if (((x - hi).array() > reach).any() || ((lo - x).array() > reach).any()) continue;
-      const auto d = point_capsule(x, c.shape);
+      const auto d = point_capsule(x, shape);
       if (!d || d->signed_distance > L) continue;
       const int body = model.node(n).body;
       const NodeOnPlane node{x, view.v.template segment<3>(6 * n), L, view.dt, Vec3::Zero(), Vec3::Zero()};
       ContactState st;
       const ContactForce cf = detail::node_force(*law_, node, d->signed_distance, d->n_W, bodies_[body].wall, st);
       f.template segment<3>(6 * n) += cf.on_a;
-      add_pair_force(body, c.pair_id, cf.on_a);
+      add_pair_force(body, pair_id, cf.on_a);
       ++active_;
     }
   }
