@@ -313,3 +313,23 @@ TEST_CASE("A person standing as an obstacle: a strike is the contact force it ca
   CHECK(watch.touching());
   CHECK_FALSE(watch.finish());
 }
+
+TEST_CASE("A person standing as an obstacle against an item from the start is not struck by it", "[harm][strike][obstacle]") {
+  // The run's contact forces exist from the first step on (none at t = 0): a seated person whose chair
+  // touches them from the start showed a strike at 0.000 s with 0 J. A force from the first step is no
+  // strike; once it is gone, the item's return is one.
+  Occupant o;
+  o.name = "clerk";
+  o.obstacle = true;
+  StrikeWatch watch(o, OccupantZone::body, "chair");
+  const double dt = 1e-3;
+  CHECK_FALSE(watch.observe_contact(0.0, -0.001, 0.0, 0.0));  // the initial state: no force evaluated yet
+  for (int i = 1; i <= 100; ++i) CHECK_FALSE(watch.observe_contact(i * dt, -0.001, 0.0, 55.0));
+  CHECK_FALSE(watch.finish());
+  CHECK_FALSE(watch.observe_contact(0.101, -0.01, 0.0, 0.0));  // it moves off
+  CHECK_FALSE(watch.observe_contact(0.102, -0.009, 0.5, 80.0));  // and back at 1 m/s: a strike
+  const auto s = watch.finish();
+  REQUIRE(s);
+  CHECK(s->time == Approx(0.1015));
+  CHECK(s->relative_speed == Approx(1.0));
+}

@@ -125,7 +125,7 @@ class StrikeWatch {
         if (!(F > 0)) pushed_->add(t - strike_.time, 0.0);  // gone between the steps, linearly
         done = close(), armed_ = !(F > 0);
       }
-    } else if (F > 0 && armed_ && t_prev_ >= 0 && t > t_prev_ && (!struck_ || rate >= rearm_speed)) {
+    } else if (F > 0 && armed_ && t_prev_ > 0 && t > t_prev_ && (!struck_ || rate >= rearm_speed)) {
       strike_ = Strike{};
       strike_.occupant = occupant_.name, strike_.item = item_, strike_.zone = zone_;
       strike_.time = t - 0.5 * (t - t_prev_);
@@ -135,7 +135,9 @@ class StrikeWatch {
       pushed_->add(t - strike_.time, F);
       struck_ = true;
     } else {
-      armed_ = t_prev_ >= 0 ? armed_ || !(F > 0) : !(F > 0);  // touching at the start is no strike
+      // Touching at the start is no strike: the contact forces are known from the first step on (at t =
+      // 0 none has been evaluated), so a force at the first step was there from the start.
+      armed_ = t_prev_ > 0 ? armed_ || !(F > 0) : !(F > 0);
     }
     d_prev_ = d, t_prev_ = t, ke_prev_ = item_kinetic_energy, f_prev_ = F;
     return done;
