@@ -54,6 +54,19 @@ std::string read_error(const json& j) {
   return ffem_test::input_error([&] { read(j); });
 }
 
+// A quiet run on one thread, its files in a fresh folder `name` under the test folder (none: no files).
+RunOptions quiet_run(const std::string& name = "") {
+  RunOptions opt;
+  if (!name.empty()) {
+    opt.out_dir = std::string(FFEM_TEST_TMP) + "/" + name;
+    std::filesystem::remove_all(opt.out_dir);
+  }
+  opt.progress = false;
+  opt.forecast = false;
+  opt.threads = 1;
+  return opt;
+}
+
 struct Expected {
   double time = -1, kinetic_energy = 0;
   OccupantZone zone = OccupantZone::head;
@@ -120,13 +133,8 @@ TEST_CASE("a toppling block strikes the person in front of it when and as hard a
                   << head.time << " s with " << head.kinetic_energy << " J, body at " << body.time << " s with "
                   << body.kinetic_energy << " J");
     REQUIRE((head.time > 0 || body.time > 0));
-    const std::string out = std::string(FFEM_TEST_TMP) + "/occupants_run";
-    std::filesystem::remove_all(out);
-    RunOptions opt;
-    opt.out_dir = out;
-    opt.progress = false;
-    opt.forecast = false;
-    opt.threads = 1;
+    const RunOptions opt = quiet_run("occupants_run");
+    const std::string& out = opt.out_dir;
     const RunSummary sum = run_scene(spec, opt);
     REQUIRE(sum.status == "completed");
     REQUIRE(sum.occupants.size() == 1);
@@ -156,10 +164,7 @@ TEST_CASE("a toppling block strikes the person in front of it when and as hard a
 TEST_CASE("a person out of the block's reach is not struck", "[scene][occupants][dynamics]") {
   // The 1.5 m block's top reaches 1.5 m from its pivot; the person stands 2 m away.
   const Case c{0.3, 1.5, 60, 0.4, {{"name", "far"}, {"position", {-1.9, 0.0}}}};
-  RunOptions opt;
-  opt.progress = false;
-  opt.forecast = false;
-  opt.threads = 1;
+  const RunOptions opt = quiet_run();
   const RunSummary sum = run_scene(read(toppling_scene(c)), opt);
   REQUIRE(sum.occupants.size() == 1);
   CHECK(sum.occupants[0].strikes.empty());
@@ -211,13 +216,8 @@ TEST_CASE("a person standing as an obstacle stops a sliding block: first touch w
     INFO("block " << c.W << " m, " << c.M << " kg at " << c.a_over_g << " g, " << s0 << " m from the person: touch at "
                   << t_touch << " s at " << v << " m/s");
 
-    const std::string out = std::string(FFEM_TEST_TMP) + "/occupant_obstacle_run";
-    std::filesystem::remove_all(out);
-    RunOptions opt;
-    opt.out_dir = out;
-    opt.progress = false;
-    opt.forecast = false;
-    opt.threads = 1;
+    const RunOptions opt = quiet_run("occupant_obstacle_run");
+    const std::string& out = opt.out_dir;
     const RunSummary sum = run_scene(spec, opt);
     REQUIRE(sum.status == "completed");
     REQUIRE_FALSE(sum.occupants[0].strikes.empty());
@@ -247,9 +247,7 @@ TEST_CASE("a person standing as an obstacle stops a sliding block: first touch w
     CHECK(t_prev == Approx(spec.duration));
     CHECK(push == Approx(M * a * (spec.duration - 0.1 - 0.5 * tau)).epsilon(0.01));  // along +X
 
-    RunOptions quiet = opt;
-    quiet.out_dir.clear();
-    const RunSummary passed = run_scene(read(sliding_scene(c.W, c.M, c.a_over_g, c.gap, false)), quiet);
+    const RunSummary passed = run_scene(read(sliding_scene(c.W, c.M, c.a_over_g, c.gap, false)), quiet_run());
     // Held short of the person's axis (the penalty lets it in a little, and it leans on a few nodes), or
     // passed through: a sensor's block slides on beyond the far side of the body.
     CHECK(sum.items[0].slide > s0);
