@@ -170,6 +170,44 @@ TEST_CASE("A pole presses with its preload, its pad holds up to friction times i
   CHECK(restraint_response(r, rest, r.rest + Vec3(0, 0, through)).state.failure == RestraintFailure::punch_through);
 }
 
+TEST_CASE("A stopper bears the edge from below, holds it sideways up to friction times its force, and is lost crushed or slid off", "[restraints]") {
+  for (const double mu : {0.3, 0.5, 0.8}) {
+    Restraint r = placed(RestraintKind::stopper, Vec3::UnitZ(), Vec3(0.1, 0.2, 0.0));
+    r.p.friction = mu;
+    const RestraintState rest = initial_restraint_state(r);
+    CHECK(rest.regime == RestraintRegime::idle);  // placed on it: nothing until the edge settles
+    // The edge sinks by s: N = k s upward.
+    const double sink = 2e-4;
+    const RestraintResponse on = restraint_response(r, rest, r.rest - Vec3(0, 0, sink));
+    const double N = r.p.stiffness * sink;
+    CHECK(on.on_item.isApprox(Vec3(0, 0, N), 1e-12));
+    CHECK(on.state.force == Approx(N).epsilon(1e-12));
+    CHECK(on.state.stored == Approx(0.5 * N * N / r.p.stiffness).epsilon(1e-12));
+    // Sideways a little: the wedge top's spring; far (within its reach): it slips at mu N.
+    const double small = 0.5 * mu * N / r.p.lateral_stiffness;
+    const RestraintResponse near = restraint_response(r, rest, r.rest + Vec3(small, 0, -sink));
+    CHECK(near.on_item.x() == Approx(-r.p.lateral_stiffness * small).epsilon(1e-12));
+    CHECK(near.K.isApprox(slope_by_differences(r, rest, near.state.x), 1e-6));
+    const RestraintResponse far = restraint_response(r, rest, r.rest + Vec3(0, 0.5 * r.p.reach, -sink));
+    CHECK(far.state.regime == RestraintRegime::slipping);
+    CHECK(far.on_item.y() == Approx(-mu * N).epsilon(1e-12));
+    // Lifted: nothing; and where it lands, it is held from there.
+    const RestraintResponse lifted = restraint_response(r, rest, r.rest + Vec3(0.004, 0, 1e-3));
+    CHECK(lifted.state.regime == RestraintRegime::idle);
+    CHECK(lifted.on_item.isZero());
+    const RestraintResponse landed = restraint_response(r, lifted.state, r.rest + Vec3(0.004, 0, -sink));
+    CHECK(landed.on_item.isApprox(Vec3(0, 0, N), 1e-12));
+  }
+  Restraint r = placed(RestraintKind::stopper, Vec3::UnitZ());
+  const RestraintState rest = initial_restraint_state(r);
+  const double crushing = 1.01 * r.p.strength / r.p.stiffness;
+  CHECK(restraint_response(r, rest, r.rest - Vec3(0, 0, crushing)).state.failure == RestraintFailure::crush);
+  const RestraintResponse off = restraint_response(r, rest, r.rest + Vec3(1.01 * r.p.reach, 0, -1e-4));
+  CHECK(off.state.failure == RestraintFailure::slid_off);
+  CHECK(off.on_item.isZero());
+  CHECK(restraint_response(r, off.state, r.rest - Vec3(0, 0, 1e-4)).on_item.isZero());  // lost for good
+}
+
 TEST_CASE("A restraint set's ledger: the work it took is what it stores plus what it dissipated", "[restraints]") {
   // A bracket pulled past its yield and back to zero force: the dissipated energy is the plateau's
   // area, strength times the plastic pull; nothing stays stored.

@@ -444,6 +444,14 @@ class Model {
       point_masses_[i].inertia *= factor;
     }
   }
+  // Turns body `b` rigidly by the rotation Q about `pivot`: its nodes, its sections' orientation and its
+  // point masses' axes (an item leaning back on stoppers before the run, scene/build.hpp).
+  void turn_body(int b, const Mat3& Q, const Vec3& pivot) {
+    check_body(b, "turn_body");
+    for (int n : bodies_[b].nodes) nodes_[n].X = pivot + Q * (nodes_[n].X - pivot);
+    for (int e : bodies_[b].elements) elements_[e].y_ref = Q * elements_[e].y_ref;
+    for (int i : bodies_[b].point_masses) point_masses_[i].axes = Q * point_masses_[i].axes;
+  }
   void set_line_mass(int e, double mu) {
     if (!(mu >= 0) || !std::isfinite(mu))
       throw ModelError(describe_element(e) + ": line mass must be non-negative and finite (got " +

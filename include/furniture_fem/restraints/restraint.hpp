@@ -2,7 +2,7 @@
 // furniture_fem/restraints/restraint.hpp: one fastening device between a point of an item and the room
 // (docs/restraints/restraints.md), and the force it carries.
 //
-//   RestraintKind          l_bracket, strap, mat, pole
+//   RestraintKind          l_bracket, strap, mat, pole, stopper
 //   RestraintParams        every kind's numbers (SI); a kind reads the ones it declares
 //   RestraintParameter     a parameter as its kind declares it: key, unit, range, default, meaning
 //   Restraint              a device placed: its item's node, its anchor, its parameters
@@ -25,9 +25,9 @@
 
 namespace furniture_fem {
 
-enum class RestraintKind { l_bracket, strap, mat, pole };
-inline constexpr std::array<RestraintKind, 4> all_restraint_kinds = {RestraintKind::l_bracket, RestraintKind::strap,
-                                                                     RestraintKind::mat, RestraintKind::pole};
+enum class RestraintKind { l_bracket, strap, mat, pole, stopper };
+inline constexpr std::array<RestraintKind, 5> all_restraint_kinds = {
+    RestraintKind::l_bracket, RestraintKind::strap, RestraintKind::mat, RestraintKind::pole, RestraintKind::stopper};
 
 inline constexpr std::string_view to_string(RestraintKind k) {
   switch (k) {
@@ -35,6 +35,7 @@ inline constexpr std::string_view to_string(RestraintKind k) {
     case RestraintKind::strap: return "strap";
     case RestraintKind::mat: return "mat";
     case RestraintKind::pole: return "pole";
+    case RestraintKind::stopper: return "stopper";
   }
   return "?";
 }
@@ -47,20 +48,22 @@ inline std::optional<RestraintKind> restraint_kind_from_string(std::string_view 
 // Every kind's numbers in SI units. Which kind reads which, and what it means there: the declarations
 // (restraint_parameters) and docs/restraints/restraints.md.
 struct RestraintParams {
-  double stiffness = 0;          // N/m: bracket pull, strap and pole axial, mat shear and uplift
+  double stiffness = 0;          // N/m: bracket pull, strap and pole axial, mat shear and uplift, stopper bearing
   double shear_stiffness = 0;    // N/m: bracket across its pull direction
-  double strength = 0;           // N: bracket pull-out peak, strap tensile, mat peel in shear
+  double strength = 0;           // N: bracket pull-out peak, strap tensile, mat peel in shear, stopper crush
   double shear_strength = 0;     // N: bracket across its pull direction (brittle)
   double tension_strength = 0;   // N: mat uplift (brittle)
   double plateau = 0;            // m: bracket plastic pull at its peak before it softens
   double softening = 0;          // m: bracket plastic pull over which the force falls from its peak to zero
   double slack = 0;              // m: strap length beyond taut at the start
   double preload = 0;            // N: pole compression at the start
-  double lateral_stiffness = 0;  // N/m: pole pad on the ceiling, horizontally
-  double friction = 0;           // -: pole pad on the ceiling
+  double lateral_stiffness = 0;  // N/m: pole pad on the ceiling, stopper's top under the edge, horizontally
+  double friction = 0;           // -: pole pad on the ceiling, the item's edge on a stopper
   double slip_strength = 0;      // N: pole telescoping lock (it shortens above it)
   double board_strength = 0;     // N: ceiling board under the pole's pad (it crushes above it)
   double board_travel = 0;       // m: board crush after which the pad has punched through (broken)
+  double wedge_height = 0;       // m: stopper under the edge (the scene tilts the item back by it)
+  double reach = 0;              // m: stopper's depth ahead of and behind the edge (travelled further: slid off)
 };
 
 // One parameter of a kind: the scene key inside the restraint's object, kept in `field`.
@@ -110,6 +113,14 @@ inline constexpr RestraintParameter pole_parameters[] = {
     {"board_strength", "N", 0, restraint_force_max, true, 600, "compression at which the ceiling board crushes", &RP::board_strength},
     {"board_travel", "m", 0, 1, true, 0.01, "crush after which the pad has punched through (broken)", &RP::board_travel},
 };
+inline constexpr RestraintParameter stopper_parameters[] = {
+    {"wedge_height", "m", 0.002, 0.05, false, 0.015, "height of the wedge under the edge: the item leans back by it", &RP::wedge_height},
+    {"stiffness", "N/m", 0, restraint_stiffness_max, true, 1e6, "bearing stiffness of the wedge under the edge", &RP::stiffness},
+    {"lateral_stiffness", "N/m", 0, restraint_stiffness_max, true, 3e5, "horizontal stiffness of the wedge's top under the edge", &RP::lateral_stiffness},
+    {"friction", "-", 0, 5, false, 0.5, "friction coefficient of the edge on the wedge", &RP::friction},
+    {"strength", "N", 0, restraint_force_max, true, 2000, "bearing force at which the wedge is crushed (then lost)", &RP::strength},
+    {"reach", "m", 0, 0.2, true, 0.03, "edge travel over the wedge at which it slides off (then lost)", &RP::reach},
+};
 }  // namespace detail
 
 // The parameters a kind reads, in the order the docs list them.
@@ -119,6 +130,7 @@ inline std::span<const RestraintParameter> restraint_parameters(RestraintKind k)
     case RestraintKind::strap: return detail::strap_parameters;
     case RestraintKind::mat: return detail::mat_parameters;
     case RestraintKind::pole: return detail::pole_parameters;
+    case RestraintKind::stopper: return detail::stopper_parameters;
   }
   return {};
 }
@@ -164,10 +176,11 @@ inline constexpr std::string_view to_string(RestraintRegime r) {
   return names[static_cast<int>(r)];
 }
 // How it broke (RestraintState::failure).
-enum class RestraintFailure : char { none = 0, pull_out = 1, shear = 2, tension = 3, peel = 4, uplift = 5, punch_through = 6 };
+enum class RestraintFailure : char { none = 0, pull_out = 1, shear = 2, tension = 3, peel = 4, uplift = 5, punch_through = 6,
+                                     crush = 7, slid_off = 8 };
 inline constexpr std::string_view to_string(RestraintFailure f) {
-  constexpr std::array<std::string_view, 7> names = {"none",  "pull_out", "shear", "tension",
-                                                     "peel", "uplift",   "punch_through"};
+  constexpr std::array<std::string_view, 9> names = {"none", "pull_out", "shear",         "tension", "peel",
+                                                     "uplift", "punch_through", "crush", "slid_off"};
   return names[static_cast<int>(f)];
 }
 
@@ -284,6 +297,25 @@ inline void mat_response(const Restraint& r, const Vec3& d, RestraintResponse& o
   s.stored = 0.5 * (shear.squaredNorm() + tension * tension) / q.stiffness;
 }
 
+// A pad held sideways on a spring of lateral_stiffness to where it stands (s.slip) up to friction times
+// the normal force N, then slipping (a Coulomb return map): a pole's top pad, a stopper's top.
+struct PadForce {
+  Vec3 force;
+  Mat3 slope;
+};
+inline PadForce pad_friction(const RestraintParams& q, const Vec3& across, const Vec3& normal, double N, RestraintState& s) {
+  Vec3 lateral = -q.lateral_stiffness * (across - s.slip);
+  Mat3 slope = q.lateral_stiffness * (Mat3::Identity() - normal * normal.transpose());
+  const double hold = q.friction * N;
+  if (lateral.norm() > hold) {  // the pad slips: the spring's stretch back to what friction holds
+    lateral *= hold / lateral.norm();
+    s.slip = across + lateral / q.lateral_stiffness;
+    slope.setZero();
+    s.regime = RestraintRegime::slipping;
+  }
+  return {lateral, slope};
+}
+
 // The pole: compression N = preload + k (rise - shortening), nothing when it would pull; above the lock's
 // or the board's strength it shortens at that force (the board's crush beyond board_travel breaks it).
 // Its pad holds the item's top horizontally on a spring, up to friction times N (then it slips).
@@ -312,20 +344,44 @@ inline void pole_response(const Restraint& r, const Vec3& d, RestraintResponse& 
     s.extension = rise - s.plastic;
     return;
   }
-  Vec3 lateral = -q.lateral_stiffness * (across - s.slip);
-  Mat3 lateral_slope = q.lateral_stiffness * (Mat3::Identity() - up * up.transpose());
-  const double hold = q.friction * N;
-  if (lateral.norm() > hold) {  // the pad slips: the spring's stretch back to what friction holds
-    lateral *= hold / lateral.norm();
-    s.slip = across + lateral / q.lateral_stiffness;
-    lateral_slope.setZero();
-    s.regime = RestraintRegime::slipping;
-  }
-  out.on_item = -N * up + lateral;
-  out.K = axial_slope * up * up.transpose() + lateral_slope;
+  const PadForce pad = pad_friction(q, across, up, N, s);
+  out.on_item = -N * up + pad.force;
+  out.K = axial_slope * up * up.transpose() + pad.slope;
   s.force = N;
   s.extension = rise - s.plastic;
-  s.stored = 0.5 * N * N / q.stiffness + 0.5 * lateral.squaredNorm() / q.lateral_stiffness;
+  s.stored = 0.5 * N * N / q.stiffness + 0.5 * pad.force.squaredNorm() / q.lateral_stiffness;
+}
+
+// The stopper: a wedge fixed to the floor under the item's front edge (the scene has tilted the item back
+// onto it). It bears the edge from below, N = stiffness times how far the node has sunk below where it
+// stood, nothing when the edge lifts, and holds it sideways as a pole's pad does. Crushed above
+// `strength`, or slid off when the edge has travelled `reach` over it: either is final.
+inline void stopper_response(const Restraint& r, const Vec3& d, RestraintResponse& out) {
+  const RestraintParams& q = r.p;
+  RestraintState& s = out.state;
+  const Vec3& up = r.normal;
+  const double sink = -d.dot(up);
+  const Vec3 across = d + sink * up;
+  s.extension = sink;
+  if (across.norm() > q.reach) {
+    s.failure = RestraintFailure::slid_off;
+    return;
+  }
+  const double N = q.stiffness * sink;
+  if (N <= 0) {  // the edge has lifted: idle; its top holds the edge where it lands again
+    s.slip = across;
+    return;
+  }
+  if (N > q.strength) {
+    s.failure = RestraintFailure::crush;
+    return;
+  }
+  s.regime = RestraintRegime::elastic;
+  const PadForce pad = pad_friction(q, across, up, N, s);
+  out.on_item = N * up + pad.force;
+  out.K = q.stiffness * up * up.transpose() + pad.slope;
+  s.force = N;
+  s.stored = 0.5 * N * N / q.stiffness + 0.5 * pad.force.squaredNorm() / q.lateral_stiffness;
 }
 
 }  // namespace detail
@@ -346,6 +402,7 @@ inline RestraintResponse restraint_response(const Restraint& r, const RestraintS
       case RestraintKind::strap: detail::strap_response(r, x, out); break;
       case RestraintKind::mat: detail::mat_response(r, d, out); break;
       case RestraintKind::pole: detail::pole_response(r, d, out); break;
+      case RestraintKind::stopper: detail::stopper_response(r, d, out); break;
     }
   }
   if (s.broken()) {

@@ -2,12 +2,20 @@
 // furniture_fem/scene/build.hpp: a scene's items as bodies of a Model, each built by its kind
 // (furniture/item_kinds.hpp) with the item's parameters. build_scene() does not validate: call
 // validate() (scene/validation.hpp) first.
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
+#include "../core/errors.hpp"
 #include "../core/model.hpp"
 #include "../furniture/furniture.hpp"
 #include "../furniture/item_kinds.hpp"
+#include "../furniture/named_points.hpp"
 #include "spec.hpp"
 
 namespace furniture_fem {
@@ -21,6 +29,104 @@ inline Vec3 item_size(const ItemSpec& item) {
   const ItemKindEntry& kind = item_kind_of(item);
   return kind.size(kind.values(item.params.kind_values));
 }
+
+namespace detail {
+
+// A stopper's wedge height: the scene's value or the kind's default.
+inline double stopper_wedge_height(const RestraintSpec& r) {
+  const auto it = r.values.find("wedge_height");
+  return it != r.values.end() ? it->second : find_restraint_parameter(RestraintKind::stopper, "wedge_height")->default_value;
+}
+
+// The largest lean up to `wanted` (rad) at which no node of the item comes nearer to a wall than its
+// contact distance (half its members' contact width), found by bisection: an item standing close to a
+// wall leans until its top touches it. A node already that near a wall at the start is not leaning into it.
+template <class Turn>
+double wall_lean_limit(const SceneSpec& scene, const std::vector<ItemInfo>& bodies, const Model& model, const Vec3& pivot,
+                       Turn turn_by, double wanted) {
+  std::vector<std::pair<int, double>> nodes;  // a node and its contact distance
+  for (const ItemInfo& b : bodies)
+    for (int n : model.body(b.body).nodes) nodes.emplace_back(n, std::numeric_limits<double>::infinity());
+  for (auto& [n, half] : nodes)
+    for (int e : model.body(model.node(n).body).elements)
+      if (model.elements()[e].n1 == n || model.elements()[e].n2 == n) half = std::min(half, 0.5 * model.section_of(e).contact_width());
+  const auto clear = [&](double a) {
+    const Mat3 Q = turn_by(a);
+    for (const WallSpec& w : scene.walls) {
+      const Vec3 normal = w.normal.normalized(), along = Vec3::UnitZ().cross(normal).normalized();
+      for (const auto& [n, half] : nodes) {
+        const Vec3 r = pivot + Q * (model.node(n).X - pivot) - w.point;
+        if (std::abs(r.dot(along)) > 0.5 * w.width || r.z() > w.height) continue;
+        if ((model.node(n).X - w.point).dot(normal) >= half && r.dot(normal) < half) return false;
+      }
+    }
+    return true;
+  };
+  if (clear(wanted)) return wanted;
+  double lo = 0, hi = wanted;
+  for (int k = 0; k < 60; ++k) (clear(0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
+  return lo;
+}
+
+// Stoppers under an item's front edge lean it back: the item is turned about its back bottom edge (its
+// nodes' line farthest back and lowest) until the front-most stopper's node stands the wedge's height
+// higher (docs/restraints/restraints.md, "stopper"), or less where a wall stops its top
+// (wall_lean_limit). Its stoppers must share one height. Nothing is done for an item without stoppers.
+inline void lean_on_stoppers(const SceneSpec& scene, std::vector<ItemInfo>& bodies, Model& model) {
+  const auto fail = [&](std::size_t k, const std::string& key, const std::string& message) {
+    throw InputError(scene.source, 0, "restraints[" + std::to_string(k) + "]." + key,
+                     "restraint '" + scene.restraints[k].name + "': " + message);
+  };
+  const ItemInfo* frame = nullptr;
+  std::optional<double> height;
+  double lever = 0;  // from the back edge to the front-most stopper's node, in the item frame (m)
+  std::size_t first = 0;
+  double y_back = -1e300, z_low = 1e300;
+  for (std::size_t k = 0; k < scene.restraints.size(); ++k) {
+    const RestraintSpec& r = scene.restraints[k];
+    const auto on = std::find_if(bodies.begin(), bodies.end(), [&](const ItemInfo& b) { return b.name == r.item; });
+    if (r.kind != RestraintKind::stopper || on == bodies.end()) continue;
+    const double h = stopper_wedge_height(r);
+    if (height && h != *height)
+      fail(k, "wedge_height", "an item's stoppers share one height: " + fmt(h) + " m here, " + fmt(*height) + " m in restraints[" +
+                                  std::to_string(first) + "]");
+    if (!frame) {
+      frame = &*on;
+      first = k;
+      for (const ItemInfo& b : bodies)
+        for (int n : model.body(b.body).nodes) {
+          const Vec3 local = frame->to_local(model.node(n).X);
+          y_back = std::max(y_back, local.y());
+          z_low = std::min(z_low, local.z());
+        }
+    }
+    height = h;
+    const std::optional<Vec3> point = named_point_local(*on, r.point);
+    if (!point) continue;  // placing the restraint names the point's problem
+    const Vec3 node = frame->to_local(model.node(nearest_node(model, on->body, on->to_world(*point))).X);
+    if (y_back - node.y() < 4 * h)
+      fail(k, "point", "a stopper goes under the item's front edge: its node is " + fmt(y_back - node.y()) +
+                           " m from the item's back edge, too close to lean the item back by " + fmt(h) + " m");
+    lever = std::max(lever, y_back - node.y());
+  }
+  if (!frame || lever <= 0) return;
+  const Vec3 pivot = frame->to_world(Vec3(0, y_back, z_low));
+  const auto turn_by = [&](double a) -> Mat3 {
+    return frame->R * Eigen::AngleAxisd(-a, Vec3::UnitX()).toRotationMatrix() * frame->R.transpose();
+  };
+  const double wanted = std::asin(*height / lever);
+  const double angle = wall_lean_limit(scene, bodies, model, pivot, turn_by, wanted);
+  if (!(angle > 0))
+    fail(first, "point", "item \"" + frame->name + "\" stands against a wall: its stoppers cannot lean it back");
+  const Mat3 turn = turn_by(angle);
+  for (ItemInfo& b : bodies) {
+    model.turn_body(b.body, turn, pivot);
+    b.R = turn * b.R;
+    b.position = pivot + turn * (b.position - pivot);
+  }
+}
+
+}  // namespace detail
 
 // Builds item `index` of the scene into `model`: one ItemInfo per body (the separated cabinets give
 // "<name>/lower" then "<name>/upper"), with the item's contact overrides applied.
@@ -66,6 +172,7 @@ inline std::vector<ItemInfo> build_item(const SceneSpec& scene, size_t index, Mo
       info.calibration.target_mass *= *p.mass_scale;
     }
   }
+  detail::lean_on_stoppers(scene, out, model);
   return out;
 }
 

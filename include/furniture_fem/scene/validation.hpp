@@ -287,6 +287,16 @@ inline void validate(const SceneSpec& s) {
       fail("obstacles[" + std::to_string(i) + "].file", "mesh file not found: \"" + s.resolve(s.obstacles[i].file) + "\"");
   }
 
+  // The restraints' own values first: a stopper's height tilts its item as it is built.
+  std::set<std::string> restraint_names;  // a restraints.csv column each
+  for (size_t k = 0; k < s.restraints.size(); ++k) {
+    const auto& r = s.restraints[k];
+    const std::string path = "restraints[" + std::to_string(k) + "]";
+    if (const auto why = detail::name_problem(r.name); !why.empty()) fail(path + ".name", why);
+    if (!restraint_names.insert(r.name).second) fail(path + ".name", "duplicate restraint name \"" + r.name + "\"");
+    if (const auto problem = detail::restraint_problem(r, s)) fail(path + "." + problem->first, problem->second);
+  }
+
   // Build every item once: it proves the calibration targets reachable and gives markers and members.
   Model scratch;
   std::map<std::string, ItemInfo> bodies;
@@ -333,14 +343,6 @@ inline void validate(const SceneSpec& s) {
     if (f.element >= scratch.member(member).element_count)
       fail(path + ".element", "member \"" + f.member + "\" has " + std::to_string(scratch.member(member).element_count) +
                                   " elements (got index " + std::to_string(f.element) + ")");
-  }
-  std::set<std::string> restraint_names;  // a restraints.csv column each
-  for (size_t k = 0; k < s.restraints.size(); ++k) {
-    const auto& r = s.restraints[k];
-    const std::string path = "restraints[" + std::to_string(k) + "]";
-    if (const auto why = detail::name_problem(r.name); !why.empty()) fail(path + ".name", why);
-    if (!restraint_names.insert(r.name).second) fail(path + ".name", "duplicate restraint name \"" + r.name + "\"");
-    if (const auto problem = detail::restraint_problem(r, s)) fail(path + "." + problem->first, problem->second);
   }
   std::set<std::string> exit_names;  // an exits.csv column each
   for (size_t k = 0; k < s.exits.size(); ++k) {

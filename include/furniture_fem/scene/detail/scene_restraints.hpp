@@ -170,6 +170,13 @@ inline Restraint place_restraint(const SceneSpec& s, std::size_t i, const Model&
         fail("point", "a mat goes under the item's base: its point \"" + spec.point + "\" is " + fmt(r.rest.z() - floor_z) +
                           " m above the floor (at most " + fmt(mat_reach) + " m)");
       break;
+    case RestraintKind::stopper:  // the item already leans back on it (lean_on_stoppers, scene/build.hpp)
+      r.normal = Vec3::UnitZ();
+      r.anchor = Vec3(r.rest.x(), r.rest.y(), floor_z);
+      if (r.rest.z() - floor_z - r.p.wedge_height > mat_reach)
+        fail("point", "a stopper goes under the item's front edge: its point \"" + spec.point + "\" is " +
+                          fmt(r.rest.z() - floor_z - r.p.wedge_height) + " m above the wedge (at most " + fmt(mat_reach) + " m)");
+      break;
     case RestraintKind::pole:
       if (!ceiling_z) fail("kind", "a pole presses against the ceiling: the scene has none (\"ceiling\": {\"height\": ...})");
       r.normal = -Vec3::UnitZ();
