@@ -860,6 +860,8 @@ class RoomContact {
 
   void obstacle_contacts(const ContactView& view, Eigen::VectorXd& f);
   void capsule_contacts(const ContactView& view, Eigen::VectorXd& f);
+  // Node n `distance` in front of a fixed obstacle's surface (normal toward it): the law's force, explicit.
+  void push_off_obstacle(const ContactView& view, int n, double distance, const Vec3& normal, int pair_id, Eigen::VectorXd& f);
 
   // ---- Rigid pairs by their hulls (set_rigid_pair_hulls) ----
 

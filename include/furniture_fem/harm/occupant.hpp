@@ -80,7 +80,8 @@ inline double segment_box_signed_distance_search(const Vec3& p, const Vec3& q, c
 // seven). 0 when the segment reaches the box.
 inline double segment_box_squared_distance(const Vec3& p, const Vec3& q, const OrientedBox& box) {
   const Vec3 a = box.axes.transpose() * (p - box.centre), b = box.axes.transpose() * (q - p);
-  std::array<double, 8> cuts{};
+  std::array<double, 8> cuts;
+  cuts.fill(2.0);  // unused entries sort to the end: the whole array is sorted (GCC cannot bound n)
   int n = 0;
   cuts[n++] = 0.0;
   for (int i = 0; i < 3; ++i)
@@ -90,7 +91,7 @@ inline double segment_box_squared_distance(const Vec3& p, const Vec3& q, const O
         if (t > 0 && t < 1) cuts[n++] = t;
       }
   cuts[n++] = 1.0;
-  std::sort(cuts.begin(), cuts.begin() + n);
+  std::sort(cuts.begin(), cuts.end());
   double best = std::numeric_limits<double>::infinity();
   for (int k = 0; k + 1 < n; ++k) {
     const double t0 = cuts[k], t1 = cuts[k + 1], tm = 0.5 * (t0 + t1);

@@ -126,11 +126,7 @@ class StrikeWatch {
         done = close(), armed_ = !(F > 0);
       }
     } else if (F > 0 && armed_ && t_prev_ > 0 && t > t_prev_ && (!struck_ || rate >= rearm_speed)) {
-      strike_ = Strike{};
-      strike_.occupant = occupant_.name, strike_.item = item_, strike_.zone = zone_;
-      strike_.time = t - 0.5 * (t - t_prev_);
-      strike_.relative_speed = rate;
-      strike_.kinetic_energy = 0.5 * (ke_prev_ + item_kinetic_energy);
+      begin_strike(0.5, t, d, item_kinetic_energy);  // the contact began between the steps
       pushed_.emplace(occupant_.form(zone_));
       pushed_->add(t - strike_.time, F);
       struck_ = true;
@@ -191,9 +187,9 @@ class StrikeWatch {
     if (present) ar(*x);
   }
 
-  void open(double t, double d, double ke) {
-    base_ = armed_at_;
-    const double frac = (base_ - d_prev_) / (d - d_prev_);  // where between the steps it crossed base_
+  // A new strike's record, the item reaching the zone at `frac` of the way from the last step to this
+  // one: its time, its speed into the zone and its energy there.
+  void begin_strike(double frac, double t, double d, double ke) {
     strike_ = Strike{};
     strike_.occupant = occupant_.name;
     strike_.item = item_;
@@ -201,6 +197,10 @@ class StrikeWatch {
     strike_.time = t_prev_ + frac * (t - t_prev_);
     strike_.relative_speed = (d - d_prev_) / (t - t_prev_);
     strike_.kinetic_energy = ke_prev_ + frac * (ke - ke_prev_);
+  }
+  void open(double t, double d, double ke) {
+    base_ = armed_at_;
+    begin_strike((base_ - d_prev_) / (d - d_prev_), t, d, ke);  // where between the steps it crossed base_
     form_.emplace(occupant_.form(zone_));
     form_->advance(0.0, d - base_, t - strike_.time);
   }

@@ -149,7 +149,6 @@ inline Vec3 RoomContact::reported_pair_force(int body_a, int body_b, const Segme
 inline void RoomContact::obstacle_contacts(const ContactView& view, Eigen::VectorXd& f) {
   const Model& model = view.model;
   for (int n = 0; n < model.num_nodes(); ++n) {
-    const int body = model.node(n).body;
     for (const auto& ob : obstacles_) {
       const double L = half_width_[n];
       // Only nodes within L of the mesh get a closest-point search (one per node and step made a
@@ -159,16 +158,20 @@ inline void RoomContact::obstacle_contacts(const ContactView& view, Eigen::Vecto
       const Vec3 d = view.x[n] - cp->p_WM;
       const double l = d.norm();
       if (l > L || l < 1e-12) continue;
-      // The mesh's closest point as a plane through it, normal towards the node.
-      const NodeOnPlane node{view.x[n], view.v.template segment<3>(6 * n), L, view.dt, Vec3::Zero(), Vec3::Zero()};
-      ContactState st;
-      const ContactForce cf =
-          detail::node_force(*law_, node, l, Vec3(d / l), bodies_[body].wall, st);
-      f.template segment<3>(6 * n) += cf.on_a;
-      add_pair_force(body, obstacle_id, cf.on_a);
-      ++active_;
+      push_off_obstacle(view, n, l, Vec3(d / l), obstacle_id, f);  // the closest point as a plane through it
     }
   }
+}
+
+inline void RoomContact::push_off_obstacle(const ContactView& view, int n, double distance, const Vec3& normal, int pair_id,
+                                           Eigen::VectorXd& f) {
+  const int body = view.model.node(n).body;
+  const NodeOnPlane node{view.x[n], view.v.template segment<3>(6 * n), half_width_[n], view.dt, Vec3::Zero(), Vec3::Zero()};
+  ContactState st;
+  const ContactForce cf = detail::node_force(*law_, node, distance, normal, bodies_[body].wall, st);
+  f.template segment<3>(6 * n) += cf.on_a;
+  add_pair_force(body, pair_id, cf.on_a);
+  ++active_;
 }
 
 inline void RoomContact::add_capsule(const Capsule& capsule, int id) {
@@ -191,13 +194,7 @@ inline void RoomContact::capsule_contacts(const ContactView& view, Eigen::Vector
       if (((x - hi).array() > reach).any() || ((lo - x).array() > reach).any()) continue;
       const auto d = point_capsule(x, shape);
       if (!d || d->signed_distance > L) continue;
-      const int body = model.node(n).body;
-      const NodeOnPlane node{x, view.v.template segment<3>(6 * n), L, view.dt, Vec3::Zero(), Vec3::Zero()};
-      ContactState st;
-      const ContactForce cf = detail::node_force(*law_, node, d->signed_distance, d->n_W, bodies_[body].wall, st);
-      f.template segment<3>(6 * n) += cf.on_a;
-      add_pair_force(body, pair_id, cf.on_a);
-      ++active_;
+      push_off_obstacle(view, n, d->signed_distance, d->n_W, pair_id, f);
     }
   }
 }
