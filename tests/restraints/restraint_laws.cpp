@@ -200,6 +200,18 @@ TEST_CASE("A stopper bears the edge from below, holds it sideways up to friction
   }
   Restraint r = placed(RestraintKind::stopper, Vec3::UnitZ());
   const RestraintState rest = initial_restraint_state(r);
+  // Its bearing is damped while it bears: sinking at 1 cm/s adds c v; its slope in v against differences.
+  const Vec3 sunk = r.rest - Vec3(0, 0, 2e-4), v(0.002, 0, -0.01);
+  const RestraintResponse moving = restraint_response(r, rest, sunk, v);
+  CHECK(moving.on_item.z() == Approx(r.p.stiffness * 2e-4 + r.p.damping * 0.01).epsilon(1e-12));
+  Mat3 C;
+  for (int j = 0; j < 3; ++j) {
+    const Vec3 dv = 1e-7 * Vec3::Unit(j);
+    C.col(j) = -(restraint_response(r, rest, sunk, v + dv).on_item - restraint_response(r, rest, sunk, v - dv).on_item) / 2e-7;
+  }
+  CHECK(moving.C.isApprox(C, 1e-6));
+  // Leaving faster than the wedge follows: nothing (it does not pull the edge down).
+  CHECK(restraint_response(r, rest, sunk, Vec3(0, 0, 1.0)).state.regime == RestraintRegime::idle);
   const double crushing = 1.01 * r.p.strength / r.p.stiffness;
   CHECK(restraint_response(r, rest, r.rest - Vec3(0, 0, crushing)).state.failure == RestraintFailure::crush);
   const RestraintResponse off = restraint_response(r, rest, r.rest + Vec3(1.01 * r.p.reach, 0, -1e-4));

@@ -336,7 +336,7 @@ class RoomContact {
       return false;
     });
     for (int i : restraints_of_[body]) {
-      const RestraintResponse r = restraints_.response(i, view.x[restraints_[i].node]);
+      const RestraintResponse r = restraint_now(view, i);
       out.status.push_back(static_cast<char>(r.state.regime));
       if (r.state.regime == RestraintRegime::idle || r.state.broken()) continue;
       out.tangents.push_back(restraint_tangent(view, i, r));
@@ -354,7 +354,7 @@ class RoomContact {
       return status_of(pc.force) != point_status_[point_index(pt) * planes_.size() + p];
     });
     return planes_changed || std::any_of(restraints_of_[body].begin(), restraints_of_[body].end(), [&](int i) {
-      return static_cast<char>(restraints_.response(i, view.x[restraints_[i].node]).state.regime) != restraint_status_[i];
+      return static_cast<char>(restraint_now(view, i).state.regime) != restraint_status_[i];
     });
   }
   std::vector<char> last_status(const Model& model, int body) const {
@@ -862,6 +862,7 @@ class RoomContact {
   void capsule_contacts(const ContactView& view, Eigen::VectorXd& f);
   // Node n `distance` in front of a fixed obstacle's surface (normal toward it): the law's force, explicit.
   void push_off_obstacle(const ContactView& view, int n, double distance, const Vec3& normal, int pair_id, Eigen::VectorXd& f);
+  RestraintResponse restraint_now(const ContactView& view, int i) const;  // at its node's place and speed, nothing kept
 
   // ---- Rigid pairs by their hulls (set_rigid_pair_hulls) ----
 

@@ -64,6 +64,7 @@ struct RestraintParams {
   double board_travel = 0;       // m: board crush after which the pad has punched through (broken)
   double wedge_height = 0;       // m: stopper under the edge (the scene tilts the item back by it)
   double reach = 0;              // m: stopper's depth ahead of and behind the edge (travelled further: slid off)
+  double damping = 0;            // N s/m: stopper's bearing (the elastomer's loss), while it bears
 };
 
 // One parameter of a kind: the scene key inside the restraint's object, kept in `field`.
@@ -120,6 +121,7 @@ inline constexpr RestraintParameter stopper_parameters[] = {
     {"friction", "-", 0, 5, false, 0.5, "friction coefficient of the edge on the wedge", &RP::friction},
     {"strength", "N", 0, restraint_force_max, true, 2000, "bearing force at which the wedge is crushed (then lost)", &RP::strength},
     {"reach", "m", 0, 0.2, true, 0.03, "edge travel over the wedge at which it slides off (then lost)", &RP::reach},
+    {"damping", "N s/m", 0, 1e6, false, 5000, "viscous damping of its bearing while it bears", &RP::damping},
 };
 }  // namespace detail
 
@@ -204,11 +206,12 @@ struct RestraintState {
   bool broken() const { return failure != RestraintFailure::none; }
 };
 
-// The force on the item's node at position x, its slope (f(x + dx) ~ on_item - K dx) and the state
-// it leaves (from the committed state `from`).
+// The force on the item's node at position x and velocity v, its slopes (f(x + dx, v + dv) ~ on_item -
+// K dx - C dv) and the state it leaves (from the committed state `from`). Only a stopper's bearing
+// reads v (its damping); the other kinds are springs.
 struct RestraintResponse {
   Vec3 on_item = Vec3::Zero();
-  Mat3 K = Mat3::Zero();
+  Mat3 K = Mat3::Zero(), C = Mat3::Zero();
   RestraintState state;
 };
 
@@ -355,8 +358,10 @@ inline void pole_response(const Restraint& r, const Vec3& d, RestraintResponse& 
 // The stopper: a wedge fixed to the floor under the item's front edge (the scene has tilted the item back
 // onto it). It bears the edge from below, N = stiffness times how far the node has sunk below where it
 // stood, nothing when the edge lifts, and holds it sideways as a pole's pad does. Crushed above
-// `strength`, or slid off when the edge has travelled `reach` over it: either is final.
-inline void stopper_response(const Restraint& r, const Vec3& d, RestraintResponse& out) {
+// `strength`, or slid off when the edge has travelled `reach` over it: either is final. Its bearing is
+// damped (`damping` times the edge's speed into it) while it bears: an undamped spring under a leaning
+// item rang on for seconds after the item settled onto it.
+inline void stopper_response(const Restraint& r, const Vec3& d, const Vec3& v, RestraintResponse& out) {
   const RestraintParams& q = r.p;
   RestraintState& s = out.state;
   const Vec3& up = r.normal;
@@ -367,9 +372,9 @@ inline void stopper_response(const Restraint& r, const Vec3& d, RestraintRespons
     s.failure = RestraintFailure::slid_off;
     return;
   }
-  const double N = q.stiffness * sink;
-  if (N <= 0) {  // the edge has lifted: idle; its top holds the edge where it lands again
-    s.slip = across;
+  const double spring = q.stiffness * sink, N = spring - q.damping * v.dot(up);
+  if (spring <= 0 || N <= 0) {  // the edge has lifted, or leaves faster than the wedge follows: idle
+    s.slip = across;            // its top holds the edge where it lands again
     return;
   }
   if (N > q.strength) {
@@ -380,15 +385,17 @@ inline void stopper_response(const Restraint& r, const Vec3& d, RestraintRespons
   const PadForce pad = pad_friction(q, across, up, N, s);
   out.on_item = N * up + pad.force;
   out.K = q.stiffness * up * up.transpose() + pad.slope;
+  out.C = q.damping * up * up.transpose();
   s.force = N;
-  s.stored = 0.5 * N * N / q.stiffness + 0.5 * pad.force.squaredNorm() / q.lateral_stiffness;
+  s.stored = 0.5 * spring * spring / q.stiffness + 0.5 * pad.force.squaredNorm() / q.lateral_stiffness;
 }
 
 }  // namespace detail
 
-// Restraint r with its node at x, from the committed state `from` (the trial it leaves in .state; its
-// work, peak and break time are left to the commit).
-inline RestraintResponse restraint_response(const Restraint& r, const RestraintState& from, const Vec3& x) {
+// Restraint r with its node at x moving at v, from the committed state `from` (the trial it leaves in
+// .state; its work, peak and break time are left to the commit).
+inline RestraintResponse restraint_response(const Restraint& r, const RestraintState& from, const Vec3& x,
+                                            const Vec3& v = Vec3::Zero()) {
   RestraintResponse out;
   RestraintState& s = out.state;
   s = from;
@@ -402,12 +409,13 @@ inline RestraintResponse restraint_response(const Restraint& r, const RestraintS
       case RestraintKind::strap: detail::strap_response(r, x, out); break;
       case RestraintKind::mat: detail::mat_response(r, d, out); break;
       case RestraintKind::pole: detail::pole_response(r, d, out); break;
-      case RestraintKind::stopper: detail::stopper_response(r, d, out); break;
+      case RestraintKind::stopper: detail::stopper_response(r, d, v, out); break;
     }
   }
   if (s.broken()) {
     out.on_item.setZero();
     out.K.setZero();
+    out.C.setZero();
     s.force = s.stored = 0;
     s.regime = RestraintRegime::broken;
   }

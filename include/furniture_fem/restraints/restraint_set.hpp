@@ -35,11 +35,13 @@ class RestraintSet {
   // The committed state of each (its force, regime, peak, break time ... at the last step).
   const std::vector<RestraintState>& states() const { return committed_; }
 
-  // Restraint i with its node at x, from its committed state; nothing recorded.
-  RestraintResponse response(std::size_t i, const Vec3& x) const { return restraint_response(restraints_[i], committed_[i], x); }
+  // Restraint i with its node at x moving at v, from its committed state; nothing recorded.
+  RestraintResponse response(std::size_t i, const Vec3& x, const Vec3& v = Vec3::Zero()) const {
+    return restraint_response(restraints_[i], committed_[i], x, v);
+  }
   // The same, its state kept as the trial the next commit keeps.
-  RestraintResponse evaluate(std::size_t i, const Vec3& x) {
-    RestraintResponse out = response(i, x);
+  RestraintResponse evaluate(std::size_t i, const Vec3& x, const Vec3& v = Vec3::Zero()) {
+    RestraintResponse out = response(i, x, v);
     trial_[i] = out.state;
     return out;
   }

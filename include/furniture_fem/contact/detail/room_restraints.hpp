@@ -29,7 +29,12 @@ inline void RoomContact::set_restraints(RestraintSet restraints) {
 inline NodalContactTangent RoomContact::restraint_tangent(const ContactView& view, int i, const RestraintResponse& r) const {
   const int n = restraints_[i].node;
   const int code = (static_cast<int>(r.state.regime) + 1) << 24;
-  return {n, code, r.K, Mat3::Zero(), view.x[n], Vec3(view.v.template segment<3>(6 * n))};
+  return {n, code, r.K, r.C, view.x[n], Vec3(view.v.template segment<3>(6 * n))};
+}
+
+inline RestraintResponse RoomContact::restraint_now(const ContactView& view, int i) const {
+  const int n = restraints_[i].node;
+  return restraints_.response(i, view.x[n], view.v.template segment<3>(6 * n));
 }
 
 inline void RoomContact::restraint_forces(const ContactView& view, Eigen::VectorXd& f, bool only_implicit) {
@@ -39,7 +44,7 @@ inline void RoomContact::restraint_forces(const ContactView& view, Eigen::Vector
     const Restraint& rs = restraints_[i];
     const bool inside_step = implicit && bodies_[rs.body].implicit;
     if (only_implicit && !inside_step) continue;
-    const RestraintResponse r = restraints_.evaluate(i, view.x[rs.node]);
+    const RestraintResponse r = restraints_.evaluate(i, view.x[rs.node], view.v.template segment<3>(6 * rs.node));  // kept
     restraint_status_[i] = static_cast<char>(r.state.regime);
     if (r.state.regime == RestraintRegime::idle || r.state.broken()) continue;
     f.template segment<3>(6 * rs.node) += r.on_item;
