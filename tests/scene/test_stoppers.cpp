@@ -6,6 +6,8 @@
 
 #include <furniture_fem/scene/scene_runner.hpp>
 
+#include "../support/input_errors.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -91,12 +93,7 @@ SceneSpec read(const json& j) {
 }
 
 std::string read_error(const json& j) {
-  try {
-    read(j);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
+  return ffem_test::input_error([&] { read(j); });
 }
 
 const Block blocks[] = {{0.6, 0.4, 1.6, 0.8, 80}, {0.9, 0.45, 1.8, 0.85, 120}};
