@@ -430,6 +430,82 @@ TEST_CASE("damage states: fallen counts an item off its feet, whatever it ends a
   CHECK(count("overturned") == overturned);
 }
 
+TEST_CASE("damage states: device_broke per fastened body, its counts and fit from the run records", "[study][restraints]") {
+  // Two variants on the same rooms. In "fastened", the cabinet's second of two brackets breaks in
+  // round(n Phi(ln(x / theta) / beta)) of n rooms at level x (theta 0.9, beta 0.35), the shelf's strap
+  // never does, the chair is not fastened. The fit must return the generating median and dispersion (the
+  // rounding moves a fraction by at most 1 / (2 n) = 5e-4, the estimates by about that, relative: 1 %
+  // and 2 % leave margin and still catch a miscount); counts per level are exact.
+  constexpr double theta = 0.9, beta = 0.35;
+  constexpr long n = 1000;
+  StudySpec s;
+  s.intensity.levels = {0.5, 0.75, 1.0, 1.5};
+  s.realisations = int(n);
+  s.variants = {StudyVariant{}, StudyVariant{}};
+  s.variants[0].name = "free", s.variants[1].name = "fastened";
+  const auto expected = [&](double x) {
+    return std::lround(double(n) * 0.5 * std::erfc(-std::log(x / theta) / (beta * std::sqrt(2.0))));
+  };
+  const auto device = [](const char* name, const char* item, bool broke) {
+    RestraintOutcome o;
+    o.name = name, o.kind = "l_bracket", o.item = item, o.broke = broke;
+    return o;
+  };
+  std::vector<RunResult> results;
+  for (long realisation = 0; realisation < s.num_runs() / 2; ++realisation)
+    for (int v : {0, 1}) {
+      RunResult r;
+      r.realisation = realisation, r.variant = v, r.run = 2 * realisation + v, r.status = "completed";
+      for (const char* name : {"cabinet", "shelf", "chair"}) r.bodies.push_back(body(name, 0.0, 1.0));
+      const double level = s.intensity.levels[std::size_t(realisation / n)];
+      if (v == 1) {
+        r.restraints = {device("cabinet_left", "cabinet", false), device("cabinet_right", "cabinet", realisation % n < expected(level)),
+                        device("shelf_strap", "shelf", false)};
+        CHECK(in_damage_state(s.outcomes, r, r.bodies[0], "device_broke") == (realisation % n < expected(level)));
+      }
+      results.push_back(r);
+    }
+  CHECK_THROWS_WITH(in_damage_state(s.outcomes, results[0].bodies[0], "device_broke"), Contains("device_broke"));
+  const StudyReport rep = study_report(s, results);
+  const auto rows = [&](const char* variant, const char* body_name) {
+    std::vector<ProbabilityRow> out;
+    for (const ProbabilityRow& p : rep.probabilities)
+      if (p.variant == variant && p.body == body_name && p.state == std::string("device_broke")) out.push_back(p);
+    return out;
+  };
+  CHECK(rows("fastened", "chair").empty());
+  CHECK(rows("free", "chair").empty());
+  const auto cabinet = rows("fastened", "cabinet"), free_cabinet = rows("free", "cabinet"), shelf = rows("fastened", "shelf");
+  REQUIRE(cabinet.size() == 4);
+  REQUIRE(free_cabinet.size() == 4);
+  REQUIRE(shelf.size() == 4);
+  for (std::size_t l = 0; l < 4; ++l) {
+    CHECK(cabinet[l].estimate.successes == expected(s.intensity.levels[l]));
+    CHECK(cabinet[l].estimate.trials == n);
+    CHECK(free_cabinet[l].estimate.successes == 0);
+    CHECK(shelf[l].estimate.successes == 0);
+  }
+  const auto fit = std::find_if(rep.fragility.begin(), rep.fragility.end(), [](const FragilityRow& f) {
+    return f.variant == "fastened" && f.body == "cabinet" && f.state == "device_broke";
+  });
+  REQUIRE(fit != rep.fragility.end());
+  REQUIRE(fit->fit.identifiable);
+  CHECK(fit->fit.theta == Approx(theta).epsilon(0.01));
+  CHECK(fit->fit.beta == Approx(beta).epsilon(0.02));
+  CHECK(fit->interval.theta_lo < theta);
+  CHECK(fit->interval.theta_hi > theta);
+  // Paired against the free rooms: p_a 0, p_b the fraction that broke.
+  const auto paired = std::find_if(rep.comparisons.begin(), rep.comparisons.end(), [](const ComparisonRow& c) {
+    return c.body == "cabinet" && c.state == "device_broke" && c.level_index == 2;
+  });
+  REQUIRE(paired != rep.comparisons.end());
+  CHECK(paired->difference.p_a == 0.0);
+  CHECK(paired->difference.p_b == Approx(double(expected(1.0)) / double(n)).epsilon(1e-12));
+  // The figure's legend names device_broke only when the report has it.
+  CHECK(detail::reported_states(rep).size() == 5);
+  CHECK(detail::reported_states(study_report(figure_study(), figure_results(figure_study()))).size() == 4);
+}
+
 TEST_CASE("study figures: fragility fits with observed fractions, tilts against intensity, slide histograms",
           "[study][figures]") {
   const StudySpec s = figure_study();

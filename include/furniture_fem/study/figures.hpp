@@ -130,12 +130,23 @@ inline void add_fragility_cell(LinePlot& plot, int panel, const StudySpec& s, co
   plot.add(dots(x, p, colour, ""), panel);
 }
 
+// The damage states the report has rows of, by their index in damage_states (which fixes each one's
+// colour): device_broke only in a study that fastens something.
+inline std::vector<int> reported_states(const StudyReport& rep) {
+  std::vector<int> states;
+  for (int st = 0; st < int(damage_states.size()); ++st)
+    if (std::any_of(rep.probabilities.begin(), rep.probabilities.end(),
+                    [&](const ProbabilityRow& r) { return r.state == damage_states[std::size_t(st)]; }))
+      states.push_back(st);
+  return states;
+}
+
 // The fragility figure's one legend, in the first panel: a line and dot per damage state in its
 // colour, and (several variants) each variant's line style and where its dots sit at a level.
-inline void add_fragility_legend(LinePlot& plot, const StudySpec& s) {
-  for (std::size_t st = 0; st < damage_states.size(); ++st) {
+inline void add_fragility_legend(LinePlot& plot, const StudySpec& s, const std::vector<int>& states) {
+  for (int st : states) {
     Series key;
-    key.color = palette_color(st), key.label = damage_states[st], key.marker = 4.5;
+    key.color = palette_color(std::size_t(st)), key.label = damage_states[std::size_t(st)], key.marker = 4.5;
     plot.add(std::move(key), 0);
   }
   if (s.num_variants() < 2) return;
@@ -153,17 +164,18 @@ inline void add_fragility_legend(LinePlot& plot, const StudySpec& s) {
 inline LinePlot fragility_plot(const StudySpec& s, const StudyReport& rep) {
   std::vector<std::string> bodies;
   for (const ProbabilityRow& r : rep.probabilities) add_unique(bodies, r.body);
+  const std::vector<int> states = reported_states(rep);
   LinePlot plot("Fragility: lognormal fits (lines), observed fractions (dots, 95 %)");
   plot.panels(std::max<int>(1, int(bodies.size()))).xlabel(intensity_axis_label(s)).xlim(0, intensity_axis_end(s));
   plot.style().legend = LegendPos::top_left;
-  add_fragility_legend(plot, s);
-  const std::size_t cells = std::size_t(s.num_variants()) * damage_states.size();
+  add_fragility_legend(plot, s, states);
+  const std::size_t cells = std::size_t(s.num_variants()) * states.size();
   for (int b = 0; b < int(bodies.size()); ++b) {
     plot.ylabel(bodies[std::size_t(b)] + ": probability", b).ylim(-0.03, 1.03, b);
     for (int v = 0; v < s.num_variants(); ++v)
-      for (int st = 0; st < int(damage_states.size()); ++st) {
-        const std::size_t k = std::size_t(v) * damage_states.size() + std::size_t(st);
-        add_fragility_cell(plot, b, s, rep, bodies[std::size_t(b)], v, st, dodge(k, cells, level_spread(s)));
+      for (std::size_t i = 0; i < states.size(); ++i) {
+        const std::size_t k = std::size_t(v) * states.size() + i;
+        add_fragility_cell(plot, b, s, rep, bodies[std::size_t(b)], v, states[i], dodge(k, cells, level_spread(s)));
       }
   }
   return plot;

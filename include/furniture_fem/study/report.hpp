@@ -10,10 +10,13 @@
 // outcomes.slide_threshold), "tilted" (largest tilt during the run above outcomes.tilt_threshold_deg),
 // "overturned" (final state overturned), "fallen" (off its feet at some time: tipped past 60 deg or came
 // down more than 5 cm, has_fallen in scene/run_summary.hpp; an upper cabinet that fell off the lower one
-// counts whether it ends lying, upright or leaning on the desk). Runs that diverged or failed are not outcomes: they are
-// counted apart (`excluded`) and never enter a probability.
+// counts whether it ends lying, upright or leaning on the desk), "device_broke" (a restraint on the body
+// broke: its outcome in the run's record; a state only of bodies that some run of the study fastens).
+// Runs that diverged or failed are not outcomes: they are counted apart (`excluded`) and never enter a probability.
+#include <algorithm>
 #include <array>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -29,7 +32,7 @@
 
 namespace furniture_fem {
 
-inline constexpr std::array<const char*, 4> damage_states{"slid", "tilted", "overturned", "fallen"};
+inline constexpr std::array<const char*, 5> damage_states{"slid", "tilted", "overturned", "fallen", "device_broke"};
 inline constexpr std::array<const char*, 6> continuous_outcomes{"slide_m", "max_tilt_deg", "lift_m",
                                                                 "floor_force_peak_N", "wall_force_peak_N",
                                                                 "item_force_peak_N"};
@@ -38,7 +41,18 @@ inline bool in_damage_state(const OutcomeSpec& o, const BodyOutcome& b, std::str
   if (state == "slid") return b.slide > o.slide_threshold;
   if (state == "tilted") return b.max_tilt_deg > o.tilt_threshold_deg;
   if (state == "fallen") return has_fallen(b.max_tilt_deg, b.lift);
-  return b.state == "overturned";
+  if (state == "overturned") return b.state == "overturned";
+  throw std::invalid_argument("in_damage_state: state \"" + std::string(state) +
+                              "\" is not a body's own (device_broke needs the run's record)");
+}
+// Whether a restraint fastening `body` broke in run `r`.
+inline bool device_broke(const RunResult& r, const std::string& body) {
+  return std::any_of(r.restraints.begin(), r.restraints.end(),
+                     [&](const RestraintOutcome& o) { return o.item == body && o.broke; });
+}
+// Every damage state, the body's own and its devices'.
+inline bool in_damage_state(const OutcomeSpec& o, const RunResult& r, const BodyOutcome& b, std::string_view state) {
+  return state == "device_broke" ? device_broke(r, b.name) : in_damage_state(o, b, state);
 }
 inline double continuous_outcome(const BodyOutcome& b, std::string_view name) {
   if (name == "slide_m") return b.slide;

@@ -23,10 +23,15 @@
 namespace furniture_fem {
 
 namespace detail {
+// A body's outcome in one completed run, with the run (its devices' outcomes).
+struct BodyInRun {
+  const RunResult* run;
+  const BodyOutcome* body;
+};
 // The completed outcomes of one body in one variant at one level, by realisation.
-inline std::map<long, const BodyOutcome*> body_outcomes(const StudySpec& s, const std::vector<RunResult>& results, int variant,
-                                                        int level, const std::string& body, long* excluded = nullptr) {
-  std::map<long, const BodyOutcome*> out;
+inline std::map<long, BodyInRun> body_outcomes(const StudySpec& s, const std::vector<RunResult>& results, int variant, int level,
+                                               const std::string& body, long* excluded = nullptr) {
+  std::map<long, BodyInRun> out;
   const long per_level = long(s.num_motions()) * s.realisations;
   for (const auto& r : results) {
     if (r.variant != variant || r.realisation / per_level != level) continue;
@@ -35,9 +40,22 @@ inline std::map<long, const BodyOutcome*> body_outcomes(const StudySpec& s, cons
       continue;
     }
     for (const auto& b : r.bodies)
-      if (b.name == body) out[r.realisation] = &b;
+      if (b.name == body) out[r.realisation] = {&r, &b};
   }
   return out;
+}
+inline bool in_state(const StudySpec& s, const BodyInRun& x, const char* state) {
+  return in_damage_state(s.outcomes, *x.run, *x.body, state);
+}
+// The damage states reported for a body: device_broke only if some run of the study fastens it (a study
+// without restraints keeps its four states).
+inline std::vector<const char*> states_of(const std::vector<RunResult>& results, const std::string& body) {
+  const bool fastened = std::any_of(results.begin(), results.end(), [&](const RunResult& r) {
+    return std::any_of(r.restraints.begin(), r.restraints.end(), [&](const RestraintOutcome& o) { return o.item == body; });
+  });
+  std::vector<const char*> states(damage_states.begin(), damage_states.end());
+  if (!fastened) states.pop_back();
+  return states;
 }
 inline std::vector<std::string> bodies_of(const std::vector<RunResult>& results, int variant) {
   std::vector<std::string> names;
@@ -57,26 +75,27 @@ FFEM_STUDY_ENTRY StudyReport study_report(const StudySpec& s, const std::vector<
   for (int v = 0; v < s.num_variants(); ++v) {
     const std::string vname = s.variant_name(v);
     for (const auto& body : detail::bodies_of(results, v)) {
+      const auto states = detail::states_of(results, body);
       std::map<std::string, std::vector<FragilityLevel>> levels_by_state;
       for (int l = 0; l < s.num_levels(); ++l) {
         long excluded = 0;
         const auto outcomes = detail::body_outcomes(s, results, v, l, body, &excluded);
         const double level = s.intensity.levels[l];
-        for (const char* state : damage_states) {
+        for (const char* state : states) {
           long k = 0;
-          for (const auto& [real, b] : outcomes) k += in_damage_state(s.outcomes, *b, state);
+          for (const auto& [real, b] : outcomes) k += detail::in_state(s, b, state);
           const long n = static_cast<long>(outcomes.size());
           if (n > 0) rep.probabilities.push_back({vname, body, state, l, level, wilson_interval(k, n), excluded});
           if (n > 0) levels_by_state[state].push_back({level, n, k});
         }
         for (const char* name : continuous_outcomes) {
           std::vector<double> values;
-          for (const auto& [real, b] : outcomes) values.push_back(continuous_outcome(*b, name));
+          for (const auto& [real, b] : outcomes) values.push_back(continuous_outcome(*b.body, name));
           if (!values.empty()) rep.distributions.push_back({vname, body, name, l, level, describe(values)});
         }
       }
       if (s.num_levels() >= 2)
-        for (const char* state : damage_states) {
+        for (const char* state : states) {
           const auto& lv = levels_by_state[state];
           if (lv.size() < 2) continue;
           FragilityRow row{vname, body, state, fit_lognormal_fragility(lv), {}};
@@ -91,12 +110,12 @@ FFEM_STUDY_ENTRY StudyReport study_report(const StudySpec& s, const std::vector<
     for (const auto& body : detail::bodies_of(results, 0))
       for (int l = 0; l < s.num_levels(); ++l) {
         const auto a = detail::body_outcomes(s, results, 0, l, body), b = detail::body_outcomes(s, results, v, l, body);
-        for (const char* state : damage_states) {
+        for (const char* state : detail::states_of(results, body)) {
           long both = 0, only_a = 0, only_b = 0, neither = 0;
           for (const auto& [real, oa] : a) {
             const auto it = b.find(real);
             if (it == b.end()) continue;
-            const bool da = in_damage_state(s.outcomes, *oa, state), db = in_damage_state(s.outcomes, *it->second, state);
+            const bool da = detail::in_state(s, oa, state), db = detail::in_state(s, it->second, state);
             both += da && db;
             only_a += da && !db;
             only_b += !da && db;
