@@ -233,7 +233,7 @@ class RoomContact {
       }
     for (int n : {bodies_[body].long_axis_node_a, bodies_[body].long_axis_node_b})
       if (n >= 0) out.push_back(n);
-    for (int i : restraints_of_[body]) out.push_back(restraints_[i].node);
+    for (int i : restraints_of_[body]) out.push_back(restraints_[i].node_on(body));
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
     return true;
@@ -336,6 +336,7 @@ class RoomContact {
       return false;
     });
     for (int i : restraints_of_[body]) {
+      if (restraints_[i].between_items()) continue;  // a joint: an item pair's (joint_force)
       const RestraintResponse r = restraint_now(view, i);
       out.status.push_back(static_cast<char>(r.state.regime));
       if (r.state.regime == RestraintRegime::idle || r.state.broken()) continue;
@@ -354,7 +355,7 @@ class RoomContact {
       return status_of(pc.force) != point_status_[point_index(pt) * planes_.size() + p];
     });
     return planes_changed || std::any_of(restraints_of_[body].begin(), restraints_of_[body].end(), [&](int i) {
-      return static_cast<char>(restraint_now(view, i).state.regime) != restraint_status_[i];
+      return !restraints_[i].between_items() && static_cast<char>(restraint_now(view, i).state.regime) != restraint_status_[i];
     });
   }
   std::vector<char> last_status(const Model& model, int body) const {
@@ -367,7 +368,7 @@ class RoomContact {
         for (const auto& group : surface_groups_[body])
           for (int sp : group.points) status.push_back(point_status_[sp * planes_.size() + p]);
     }
-    for (int i : restraints_of_[body]) status.push_back(restraint_status_[i]);
+    for (int i : restraints_of_[body]) if (!restraints_[i].between_items()) status.push_back(restraint_status_[i]);
     return status;
   }
 
@@ -847,7 +848,9 @@ class RoomContact {
   // counted as contacts, not reported as wall or floor forces); a restraint's slope as a contact's.
   void restraint_forces(const ContactView& view, Eigen::VectorXd& f, bool only_implicit);
   NodalContactTangent restraint_tangent(const ContactView& view, int i, const RestraintResponse& r) const;
-
+  void joint_force(const ContactView& view, int i, Eigen::VectorXd& f);  // a joint between items (room_restraints.hpp)
+  void joint_history(const ContactView& view);
+  std::pair<Vec3, Vec3> restraint_input(const ContactView& view, int i) const;
   // The segment pair of elements ea (A) and eb (B) in the view's state; L is the mean member width.
   static SegmentPair segment_pair(const ContactView& view, int ea, int eb);
   // The centre lines' distance at which two elements touch: half the sum of their widths.

@@ -161,13 +161,22 @@ inline void set_screw_base_defaults(RestraintParams& p, ScrewBase base) {
 
 // A device placed. `rest` is the node's position at the start, `anchor` the fixed point it is tied to
 // and `normal` the unit normal of the surface it is fixed on, into the room (a wall's; the ceiling's is
-// -z, the floor's +z).
+// -z, the floor's +z). Tied to another item instead (anchor_node >= 0: a bracket or strap joining two
+// items), `anchor` is that item's node at the start and the device acts on the first node's place
+// relative to the anchor node's displacement (item_place), with the opposite force on the anchor node;
+// `normal` is then the direction from the anchor to the node at the start (+z when they meet), fixed.
 struct Restraint {
   std::string name;
   RestraintKind kind = RestraintKind::strap;
   int body = -1, node = -1;
+  int anchor_body = -1, anchor_node = -1;  // -1: fixed to the room
   Vec3 rest = Vec3::Zero(), anchor = Vec3::Zero(), normal = Vec3::UnitX();
   RestraintParams p;
+  bool between_items() const { return anchor_node >= 0; }
+  int node_on(int b) const { return between_items() && b == anchor_body ? anchor_node : node; }  // its node on body b
+  // Where the law sees the node: x itself, or, between items, x less the anchor node's displacement
+  // (its place y against its place at the start, `anchor`); the same for speeds.
+  Vec3 item_place(const Vec3& x, const Vec3& y) const { return between_items() ? Vec3(x - (y - anchor)) : x; }
 };
 
 // What a restraint is doing, for outputs and for the implicit step (a change of regime within a step

@@ -87,6 +87,9 @@ class RestraintSet {
   static void check(const Restraint& r) {
     const auto fail = [&](const std::string& what) { throw ModelError("restraint '" + r.name + "': " + what); };
     if (r.node < 0 || r.body < 0) fail("no node of an item");
+    if (r.between_items() && (r.anchor_body < 0 || r.anchor_body == r.body)) fail("its anchor must be a node of another item");
+    if (r.between_items() && r.kind != RestraintKind::l_bracket && r.kind != RestraintKind::strap)
+      fail("only a bracket or a strap joins two items");
     if (!r.rest.allFinite() || !r.anchor.allFinite() || !(std::abs(r.normal.norm() - 1) < 1e-9))
       fail("its rest point, anchor and unit normal must be finite");
     for (const RestraintParameter& d : restraint_parameters(r.kind)) {

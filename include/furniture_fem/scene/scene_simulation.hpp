@@ -45,10 +45,6 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
   // Floor and wall contact inside the implicit step where the scene asks for it; friction sticks only
   // there (a stick spring applied explicitly would be unstable). Two rigid implicit items also have
   // their pairs inside the step (solved together); every other pair is explicit.
-  const auto implicit_for = [&](const auto& it) {
-    const ImplicitContact implicit = implicit_contact(s.contact);
-    return implicit == ImplicitContact::all || (implicit == ImplicitContact::rigid && item_is_rigid(s, it));
-  };
   for (const auto& it : items) {
     BodyContact bc;
     const ItemContact& c = it.contact;
@@ -57,7 +53,7 @@ inline std::vector<BodyContact> scene_body_contacts(const SceneSpec& s, const Mo
     base.Dc = c.Dc;
     base.q = c.q;
     base.v_reg = s.contact.velocity_regularisation;
-    bc.implicit = implicit_for(it);
+    bc.implicit = item_contact_inside_step(s, it);
     base.stick_length = !law.own_stick_spring.empty() || !bc.implicit ? 0.0 : s.contact.stick_length;
     // Linear and Hunt-Crossley springs get the paper penalty's stiffness at onset: alpha / L per
     // contact with L = 25 mm (half the 50 mm member width); the tangential spring of the stick-slip

@@ -92,14 +92,16 @@ struct ItemSpec {
 // A fastening device (docs/restraints/restraints.md): `kind` between the named point `point` of the body
 // `item` (furniture/named_points.hpp; an item's name, or "<item>/upper" and "<item>/lower") and its
 // anchor: an l_bracket or a strap on the wall `wall` at `height` above the floor (none: the point's
-// height), a mat on the floor under the point, a pole against the ceiling above it. `values`: the kind's
-// parameters the file gives (key -> value, SI; the others take the kind's defaults).
+// height) or to the named point `anchor_point` of another body `anchor_item`, a mat on the floor under
+// the point, a pole against the ceiling above it, a stopper under it. `values`: the kind's parameters
+// the file gives (key -> value, SI; the others take the kind's defaults).
 struct RestraintSpec {
   std::string name;
   RestraintKind kind = RestraintKind::l_bracket;
   std::string item, point;
   std::string wall;               // l_bracket and strap
   std::optional<double> height;   // m above the floor; l_bracket and strap
+  std::string anchor_item, anchor_point;  // l_bracket and strap joining two items, instead of a wall
   ScrewBase screws = ScrewBase::stud;  // l_bracket: what its screws go into (sets its strengths' defaults)
   std::map<std::string, double> values;
 };

@@ -19,6 +19,7 @@ inline void RoomContact::end_of_step(const ContactView& view, Eigen::VectorXd& f
     active_ -= static_cast<int>(plane_applied_.size()) - restraints_applied_;  // restraints are not contacts
     plane_contacts(view, f, true);
   }
+  joint_history(view);
   for (const auto& ip : implicit_pairs_) {
     const auto& A = view.model.elements()[ip.ea];
     const auto& B = view.model.elements()[ip.eb];

@@ -47,8 +47,13 @@ inline std::optional<std::pair<std::string, std::string>> restraint_problem(cons
   using P = std::pair<std::string, std::string>;
   if (r.item.empty()) return P{"item", "required: the name of the item it fastens"};
   if (r.point.empty()) return P{"point", "required: a named point of the item (e.g. \"top_back_left\")"};
-  if (restraint_on_wall(r.kind)) {
-    if (r.wall.empty()) return P{"wall", "required for a " + std::string(to_string(r.kind)) + ": the wall it is fixed to"};
+  if (restraint_on_wall(r.kind) && !r.anchor_item.empty()) {  // joining two items
+    if (!r.wall.empty() || r.height) return P{"anchor_item", "a restraint is fixed to a wall or to another item, not both"};
+    if (r.anchor_point.empty()) return P{"anchor_point", "required with anchor_item: a named point of that item"};
+    if (r.anchor_item == r.item) return P{"anchor_item", "must name another item than \"" + r.item + "\""};
+  } else if (restraint_on_wall(r.kind)) {
+    if (!r.anchor_point.empty()) return P{"anchor_point", "given without anchor_item"};
+    if (r.wall.empty()) return P{"wall", "required for a " + std::string(to_string(r.kind)) + ": the wall (or anchor_item) it is fixed to"};
     if (std::none_of(s.walls.begin(), s.walls.end(), [&](const WallSpec& w) { return w.name == r.wall; }))
       return P{"wall", "no wall named \"" + r.wall + "\" in the scene"};
     if (r.height && !(*r.height >= 0 && *r.height <= scene_reach))
@@ -73,7 +78,7 @@ inline RestraintSpec read_restraint(const nlohmann::json& v, const std::string& 
   if (!kind) o.fail(o.path("kind"), "unknown restraint kind \"" + *kind_name + "\"; expected one of: " + restraint_kind_names());
   r.kind = *kind;
   std::vector<std::string_view> allowed = {"name", "kind", "item", "point"};
-  if (restraint_on_wall(r.kind)) allowed.insert(allowed.end(), {"wall", "height"});
+  if (restraint_on_wall(r.kind)) allowed.insert(allowed.end(), {"wall", "height", "anchor_item", "anchor_point"});
   if (r.kind == RestraintKind::l_bracket) allowed.push_back("screws");
   for (const RestraintParameter& p : restraint_parameters(r.kind)) allowed.push_back(p.key);
   o.allow_only(allowed, "key of a " + std::string(to_string(r.kind)));
@@ -81,6 +86,8 @@ inline RestraintSpec read_restraint(const nlohmann::json& v, const std::string& 
   r.item = o.string("item", "");
   r.point = o.string("point", "");
   r.wall = o.string("wall", "");
+  r.anchor_item = o.string("anchor_item", "");
+  r.anchor_point = o.string("anchor_point", "");
   if (o.has("height")) r.height = o.number("height", 0);
   if (o.has("screws")) {
     const std::string base = o.string("screws", "");
@@ -94,7 +101,8 @@ inline RestraintSpec read_restraint(const nlohmann::json& v, const std::string& 
 
 inline nlohmann::json restraint_json(const RestraintSpec& r) {
   nlohmann::json j = {{"name", r.name}, {"kind", std::string(to_string(r.kind))}, {"item", r.item}, {"point", r.point}};
-  if (restraint_on_wall(r.kind)) j["wall"] = r.wall;
+  if (!r.anchor_item.empty()) j.update({{"anchor_item", r.anchor_item}, {"anchor_point", r.anchor_point}});
+  else if (restraint_on_wall(r.kind)) j["wall"] = r.wall;
   if (r.height) j["height"] = *r.height;
   if (r.kind == RestraintKind::l_bracket) j["screws"] = r.screws == ScrewBase::stud ? "stud" : "board";
   for (const auto& [key, value] : r.values) j[key] = value;
@@ -117,32 +125,50 @@ inline Restraint place_restraint(const SceneSpec& s, std::size_t i, const Model&
   const auto fail = [&](const std::string& key, const std::string& message) {
     throw InputError(s.source, 0, "restraints[" + std::to_string(i) + "]." + key, "restraint '" + spec.name + "': " + message);
   };
-  const ItemInfo* item = nullptr;
-  std::string bodies;
-  for (const ItemInfo& it : items) {
-    if (it.name == spec.item) item = &it;
-    if (it.name.rfind(spec.item + "/", 0) == 0) bodies += (bodies.empty() ? "\"" : ", \"") + it.name + "\"";
-  }
-  if (!item)
-    fail("item", bodies.empty() ? "no item named \"" + spec.item + "\""
-                                : "item \"" + spec.item + "\" has several bodies: name one of " + bodies);
-  const std::optional<Vec3> local = named_point_local(*item, spec.point);
-  if (!local) {
-    std::string names;
-    for (const auto& n : named_point_names(*item)) names += (names.empty() ? "" : ", ") + n;
-    fail("point", "item \"" + spec.item + "\" has no point named \"" + spec.point + "\"; its points: " + names);
-  }
+  // A body by name and its node nearest a named point of it, each problem named by its key.
+  const auto locate = [&](const char* item_key, const std::string& name, const char* point_key, const std::string& point) {
+    const ItemInfo* item = nullptr;
+    std::string bodies;
+    for (const ItemInfo& it : items) {
+      if (it.name == name) item = &it;
+      if (it.name.rfind(name + "/", 0) == 0) bodies += (bodies.empty() ? "\"" : ", \"") + it.name + "\"";
+    }
+    if (!item)
+      fail(item_key, bodies.empty() ? "no item named \"" + name + "\"" : "item \"" + name + "\" has several bodies: name one of " + bodies);
+    const std::optional<Vec3> local = named_point_local(*item, point);
+    if (!local) {
+      std::string names;
+      for (const auto& n : named_point_names(*item)) names += (names.empty() ? "" : ", ") + n;
+      fail(point_key, "item \"" + name + "\" has no point named \"" + point + "\"; its points: " + names);
+    }
+    const int node = nearest_node(model, item->body, item->to_world(*local));
+    const double off = (model.node(node).X - item->to_world(*local)).norm();
+    if (off > restraint_point_tolerance)
+      fail(point_key, "no node of \"" + name + "\" within " + fmt(restraint_point_tolerance) + " m of its point \"" + point +
+                          "\" (the nearest is " + fmt(off) + " m away)");
+    return std::pair(item, node);
+  };
   Restraint r;
   r.name = spec.name;
   r.kind = spec.kind;
+  const auto [item, node] = locate("item", spec.item, "point", spec.point);
   r.body = item->body;
-  r.node = nearest_node(model, item->body, item->to_world(*local));
+  r.node = node;
   r.rest = model.node(r.node).X;
   r.p = restraint_params(spec);
-  const double off = (r.rest - item->to_world(*local)).norm();
-  if (off > restraint_point_tolerance)
-    fail("point", "no node of \"" + spec.item + "\" within " + fmt(restraint_point_tolerance) + " m of its point \"" +
-                      spec.point + "\" (the nearest is " + fmt(off) + " m away)");
+  if (!spec.anchor_item.empty()) {  // joining two items: the anchor is the other item's node
+    const auto [other, anchor_node] = locate("anchor_item", spec.anchor_item, "anchor_point", spec.anchor_point);
+    if (other->body == item->body) fail("anchor_item", "must be another body than the restraint's item");
+    r.anchor_body = other->body;
+    r.anchor_node = anchor_node;
+    r.anchor = model.node(anchor_node).X;
+    const double length = (r.rest - r.anchor).norm();
+    r.normal = length > 1e-6 ? Vec3((r.rest - r.anchor) / length) : Vec3::UnitZ();
+    const double reach = spec.kind == RestraintKind::l_bracket ? bracket_reach : strap_reach;
+    if (length > reach)
+      fail("anchor_point", "its points are " + fmt(length) + " m apart; a " + std::string(to_string(spec.kind)) + " reaches " + fmt(reach) + " m");
+    return r;
+  }
   const double floor_z = s.table.floor_z;
   switch (spec.kind) {
     case RestraintKind::l_bracket:
