@@ -6,6 +6,8 @@
 
 #include <furniture_fem/scene/scene_runner.hpp>
 
+#include "../support/input_errors.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -54,12 +56,7 @@ SceneSpec read(const json& j) {
 }
 
 std::string read_error(const json& j) {
-  try {
-    read(j);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
+  return ffem_test::input_error([&] { read(j); });
 }
 
 template <class Scene>

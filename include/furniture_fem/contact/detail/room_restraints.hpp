@@ -31,8 +31,6 @@ inline void RoomContact::set_restraints(RestraintSet restraints) {
 
 // A restraint's regime as NodalContactTangent::status counts it: above the contacts' codes
 // (contact_status_code), so that a node's sum still changes with any term's regime.
-// Its slopes act on `node`, the device's node on the item or on its anchor item: the same K and C on
-// either (the law reads their relative place).
 inline NodalContactTangent RoomContact::restraint_tangent(const ContactView& view, int i, const RestraintResponse& r) const {
   const int node = restraints_[i].node;
   const int code = (static_cast<int>(r.state.regime) + 1) << 24;
@@ -57,7 +55,7 @@ inline void RoomContact::restraint_forces(const ContactView& view, Eigen::Vector
   restraints_applied_ = 0;
   for (std::size_t i = 0; i < restraints_.size(); ++i) {
     const Restraint& rs = restraints_[i];
-    if (rs.between_items()) {  // a joint: at the step's start only (joint_forces)
+    if (rs.between_items()) {  // a joint: at the step's start only (joint_force)
       if (!only_implicit) joint_force(view, static_cast<int>(i), f);
       continue;
     }
