@@ -204,7 +204,10 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::FlexibleBody {
       return sim.solvers_[b]->solve(r, z) && apply_contact_changes(sim, b, changes, z);
     };
     const Eigen::Index n = bs.dx.size();
-    Eigen::VectorXd r(n), z(n), p(n), w(n), q(n);
+    // z starts at zero: an iterative linear solver (CG) takes a vector of the right size as its first
+    // guess, and an uninitialised one made runs with CG differ from run to run (within CG's tolerance,
+    // grown by contact to 2.7e-9 m over 0.3 s; valgrind: "depends on uninitialised value(s)").
+    Eigen::VectorXd r(n), z = Eigen::VectorXd::Zero(n), p(n), w(n), q(n);
     times_D(bs.dx, r);
     r = -r;  // the residual of x0 = A_w^-1 b: b - (A_w + D) x0 = -D x0
     if (!precondition(r, z)) return -1;
@@ -450,7 +453,7 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::FlexibleBody {
     const int n = bs.ndof(), first = bs.contact_columns_used;
     if (bs.contact_columns.rows() != n || bs.contact_columns.cols() < first + dim)
       bs.contact_columns.conservativeResize(n, std::max<Eigen::Index>(first + dim, 2 * bs.contact_columns.cols()));
-    Eigen::VectorXd e = Eigen::VectorXd::Zero(n), z(n);
+    Eigen::VectorXd e = Eigen::VectorXd::Zero(n), z = Eigen::VectorXd::Zero(n);  // z: CG's first guess (refine_solution)
     for (int i = 0; i < dim; ++i) {
       const int dof = 6 * local + i;
       if (bs.fixed[dof]) {
