@@ -167,9 +167,10 @@ int report(const SceneSpec& spec, const RunSummary& s) {
               spec.name.c_str(), s.status.c_str(), s.t_end, s.steps, s.wall_seconds, s.elements, s.nodes, s.bodies);
   if (!s.diagnosis.empty()) std::printf("  %s\n", s.diagnosis.c_str());
   if (const auto& target = spec.ground_motion.scale_to)
-    std::printf("  ground motion scaled by %.6g to %s %g %s (then level %g)\n", s.ground_motion_scale,
-                target->measure == ScaleMeasure::pga ? "pga" : "pgv", target->value,
-                target->measure == ScaleMeasure::pga ? "m/s^2" : "m/s", spec.ground_motion.level);
+    std::printf("  ground motion scaled by %.6g to %s %g%s (then level %g)\n", s.ground_motion_scale,
+                target->measure == ScaleMeasure::pga ? "pga" : target->measure == ScaleMeasure::pgv ? "pgv" : "JMA intensity",
+                target->value, target->measure == ScaleMeasure::pga ? " m/s^2" : target->measure == ScaleMeasure::pgv ? " m/s" : "",
+                spec.ground_motion.level);
   if (const auto& st = s.settled_start) {
     if (st->interrupted)
       std::printf("  settled start: interrupted after %.2f s of settling\n", st->settling_time);

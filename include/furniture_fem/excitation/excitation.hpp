@@ -13,4 +13,5 @@
 #include "record_io.hpp"
 #include "processing.hpp"
 #include "spectrum.hpp"
+#include "seismic_intensity.hpp"
 #include "synthetic.hpp"

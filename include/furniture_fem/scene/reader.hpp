@@ -246,12 +246,13 @@ inline void parse_ground_motion(const ObjectReader& r, GroundMotionSpec& g) {
   g.check_pga = r.boolean("check_pga", g.check_pga);
   if (r.has("scale_to")) {
     const ObjectReader t = r.object("scale_to");
-    t.allow_only({"pga", "pgv"}, "scale target (pga in m/s^2 or pgv in m/s)");
-    if (t.has("pga") == t.has("pgv"))
-      t.fail(t.path(), "give exactly one of \"pga\" (m/s^2) and \"pgv\" (m/s), e.g. {\"pga\": 3.0}");
-    const char* key = t.has("pga") ? "pga" : "pgv";
+    t.allow_only({"pga", "pgv", "jma"}, "scale target (pga in m/s^2, pgv in m/s or jma, the JMA intensity)");
+    if (int(t.has("pga")) + int(t.has("pgv")) + int(t.has("jma")) != 1)
+      t.fail(t.path(), "give exactly one of \"pga\" (m/s^2), \"pgv\" (m/s) and \"jma\" (the JMA intensity), "
+                       "e.g. {\"pga\": 3.0} or {\"jma\": 6.2}");
     ScaleTarget target;
-    target.measure = t.has("pga") ? ScaleMeasure::pga : ScaleMeasure::pgv;
+    target.measure = t.has("pga") ? ScaleMeasure::pga : t.has("pgv") ? ScaleMeasure::pgv : ScaleMeasure::jma;
+    const std::string key = enum_name(scale_measure_names, target.measure);
     target.value = *t.optional_number(key);
     t.positive(key);
     g.scale_to = target;

@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -170,15 +171,27 @@ inline double scale_measure(const Record& r, ScaleMeasure m) {
   return peak;
 }
 
-// The factor that brings the horizontal components' largest peak (x, and y when given) to the scale
-// target; 1 without one. A record whose horizontal peak is zero cannot be scaled: an InputError.
-inline double scale_factor(const SceneSpec& s, const Record& x, const Record* y) {
+// The factor that brings the motion to the scale target, 1 without one: its horizontal components'
+// largest peak (x, and y when given) for pga and pgv; the intensity of every component given (x, y,
+// z) for jma. A record whose peak is zero, or that the intensity cannot be taken of, is an InputError.
+inline double scale_factor(const SceneSpec& s, const Record& x, const Record* y, const Record* z) {
   const GroundMotionSpec& g = s.ground_motion;
   if (!g.scale_to) return 1.0;
   const ScaleMeasure m = g.scale_to->measure;
+  const std::string key = "ground_motion.scale_to." + enum_name(scale_measure_names, m);
+  if (m == ScaleMeasure::jma) {
+    std::vector<std::reference_wrapper<const Record>> c{x};
+    if (y) c.emplace_back(*y);
+    if (z) c.emplace_back(*z);
+    try {
+      return jma_scale_factor(jma_intensity(c).intensity, g.scale_to->value);
+    } catch (const InputError& e) {
+      throw InputError(s.source, 0, key, std::string(e.what()) + " (after window and filter): it cannot be scaled to " +
+                                             fmt(g.scale_to->value));
+    }
+  }
   double peak = scale_measure(x, m);
   if (y) peak = std::max(peak, scale_measure(*y, m));
-  const std::string key = "ground_motion.scale_to." + enum_name(scale_measure_names, m);
   if (!(peak > 0) || !std::isfinite(peak))
     throw InputError(s.source, 0, key, "the record's horizontal " + enum_name(scale_measure_names, m) + " is " +
                                            fmt(peak) + " (after window and filter): it cannot be scaled to " +
@@ -230,7 +243,7 @@ inline TableMotion scene_ground_motion(const SceneSpec& s, double* scale_factor 
     }
   }
   for (int k = 0; k < (three_d ? 3 : 1); ++k) c[k] = detail::process_record(std::move(c[k]), s);
-  const double k = detail::scale_factor(s, c[0], three_d ? &c[1] : nullptr);
+  const double k = detail::scale_factor(s, c[0], three_d ? &c[1] : nullptr, three_d ? &c[2] : nullptr);
   if (scale_factor) *scale_factor = k;
   const double factor = k * g.level;
   if (!three_d) return TableMotion::one_d(c[0].scaled(factor));

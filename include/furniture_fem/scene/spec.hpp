@@ -123,13 +123,15 @@ enum class MotionDimensions { one_d, three_d };
 enum class AccelerationUnits { g, gal, m_per_s2 };
 
 // ground_motion.scale_to: the record scaled (every component by one factor) so that its horizontal peak
-// acceleration (pga, m/s^2) or peak velocity (pgv, m/s; trapezoid from rest) is `value`; the peak is
-// the largest absolute value over the horizontal components the run uses (x, and y for 3-D), taken on
-// the record as the run gets it (windowed and low-passed). `level` multiplies after the scaling.
-enum class ScaleMeasure { pga, pgv };
+// acceleration (pga, m/s^2) or peak velocity (pgv, m/s; trapezoid from rest) is `value`, or its JMA
+// instrumental intensity (jma; excitation/seismic_intensity.hpp) is. The peak is the largest absolute
+// value over the horizontal components the run uses (x, and y for 3-D); the intensity is that of every
+// component the run uses (x; x, y and z for 3-D); both on the record as the run gets it (windowed and
+// low-passed). `level` multiplies after the scaling.
+enum class ScaleMeasure { pga, pgv, jma };
 struct ScaleTarget {
   ScaleMeasure measure = ScaleMeasure::pga;
-  double value = 0;  // m/s^2 (pga) or m/s (pgv); positive
+  double value = 0;  // m/s^2 (pga), m/s (pgv) or the intensity (jma); positive
 };
 
 // The plausible band of a record's peak acceleration, in g, read with its declared unit: outside it the

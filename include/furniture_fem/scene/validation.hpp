@@ -271,8 +271,9 @@ inline void validate(const SceneSpec& s) {
       fail("ground_motion.scale_to", "only used with source \"file\" (a synthetic motion has its pga; points are "
                                      "scaled by level)");
     if (!(g.scale_to->value > 0) || !std::isfinite(g.scale_to->value))
-      fail(key, "must be a positive finite " + std::string(g.scale_to->measure == ScaleMeasure::pga ? "acceleration in m/s^2"
-                                                                                                   : "velocity in m/s") +
+      fail(key, "must be a positive finite " + std::string(g.scale_to->measure == ScaleMeasure::pga   ? "acceleration in m/s^2"
+                                                            : g.scale_to->measure == ScaleMeasure::pgv ? "velocity in m/s"
+                                                                                                       : "JMA intensity") +
                     " (got " + detail::fmt(g.scale_to->value) + ")");
   }
   if (g.source == MotionSource::file) {

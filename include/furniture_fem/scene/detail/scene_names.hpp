@@ -47,7 +47,8 @@ inline constexpr EnumNames<IntegratorKind, 3> integrator_names{
     {{IntegratorKind::paper_newmark, "paper_newmark"},
      {IntegratorKind::average_acceleration, "average_acceleration"},
      {IntegratorKind::generalized_alpha, "generalized_alpha"}}};
-inline constexpr EnumNames<ScaleMeasure, 2> scale_measure_names{{{ScaleMeasure::pga, "pga"}, {ScaleMeasure::pgv, "pgv"}}};
+inline constexpr EnumNames<ScaleMeasure, 3> scale_measure_names{
+    {{ScaleMeasure::pga, "pga"}, {ScaleMeasure::pgv, "pgv"}, {ScaleMeasure::jma, "jma"}}};
 inline constexpr EnumNames<SolverKind, 2> solver_names{{{SolverKind::cg, "cg"}, {SolverKind::direct, "direct"}}};
 
 inline void read_range(const ObjectReader& r, std::string_view key, double lo, double hi, bool lo_exclusive) {
