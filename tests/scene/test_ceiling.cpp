@@ -7,6 +7,8 @@
 #include <furniture_fem/io/csv.hpp>
 #include <furniture_fem/scene/scene_runner.hpp>
 
+#include "../support/scene_input.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -43,14 +45,7 @@ json block_scene(const json& z, std::optional<double> ceiling, double duration) 
   return j;
 }
 
-std::string read_error(const json& j) {
-  try {
-    validate(parse_scene_json(j, "ceiling.json"));
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+std::string read_error(const json& j) { return ffem_test::scene_error(j, "ceiling.json"); }
 
 std::string build_error(const json& j) {
   try {

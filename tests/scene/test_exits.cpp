@@ -7,7 +7,7 @@
 #include <furniture_fem/io/csv.hpp>
 #include <furniture_fem/scene/scene_runner.hpp>
 
-#include "../support/input_errors.hpp"
+#include "../support/scene_input.hpp"
 
 #include <filesystem>
 #include <fstream>
@@ -47,15 +47,9 @@ json corridor_scene(double duration) {
           {"outputs", {{"figures", true}}}};
 }
 
-SceneSpec read(const json& j) {
-  SceneSpec s = parse_scene_json(j, "exits.json");
-  validate(s);
-  return s;
-}
+SceneSpec read(const json& j) { return ffem_test::validated_scene(j, "exits.json"); }
 
-std::string read_error(const json& j) {
-  return ffem_test::input_error([&] { read(j); });
-}
+std::string read_error(const json& j) { return ffem_test::scene_error(j, "exits.json"); }
 
 RunSummary run(const SceneSpec& s, const std::string& out) {
   std::filesystem::remove_all(out);

@@ -9,6 +9,8 @@
 #include <furniture_fem/scene/paper_configurations.hpp>
 #include <furniture_fem/scene/scene_runner.hpp>
 
+#include "../support/scene_input.hpp"
+
 #include <string>
 
 using namespace furniture_fem;
@@ -32,14 +34,7 @@ json sudden_chair(double a) {
           {"outputs", {{"figures", false}}}};
 }
 
-std::string read_error(const json& j) {
-  try {
-    validate(parse_scene_json(j, "drift.json"));
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+std::string read_error(const json& j) { return ffem_test::scene_error(j, "drift.json"); }
 
 }  // namespace
 

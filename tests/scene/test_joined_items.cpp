@@ -6,7 +6,7 @@
 
 #include <furniture_fem/scene/scene_runner.hpp>
 
-#include "../support/input_errors.hpp"
+#include "../support/scene_input.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -49,15 +49,9 @@ json joined_stack(const json& x_points, double duration, const json& joint = jso
           {"outputs", {{"figures", false}}}};
 }
 
-SceneSpec read(const json& j) {
-  SceneSpec s = parse_scene_json(j, "joined.json");
-  validate(s);
-  return s;
-}
+SceneSpec read(const json& j) { return ffem_test::validated_scene(j, "joined.json"); }
 
-std::string read_error(const json& j) {
-  return ffem_test::input_error([&] { read(j); });
-}
+std::string read_error(const json& j) { return ffem_test::scene_error(j, "joined.json"); }
 
 template <class Scene>
 const ItemInfo& body_named(const Scene& scene, const std::string& name) {

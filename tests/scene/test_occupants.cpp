@@ -5,7 +5,7 @@
 
 #include <furniture_fem/scene/scene_runner.hpp>
 
-#include "../support/input_errors.hpp"
+#include "../support/scene_input.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -44,15 +44,9 @@ json toppling_scene(const Case& c) {
           {"outputs", {{"figures", false}}}};
 }
 
-SceneSpec read(const json& j) {
-  SceneSpec s = parse_scene_json(j, "occupants.json");
-  validate(s);
-  return s;
-}
+SceneSpec read(const json& j) { return ffem_test::validated_scene(j, "occupants.json"); }
 
-std::string read_error(const json& j) {
-  return ffem_test::input_error([&] { read(j); });
-}
+std::string read_error(const json& j) { return ffem_test::scene_error(j, "occupants.json"); }
 
 // A quiet run on one thread, its files in a fresh folder `name` under the test folder (none: no files).
 RunOptions quiet_run(const std::string& name = "") {

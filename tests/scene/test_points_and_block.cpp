@@ -6,6 +6,8 @@
 #include <furniture_fem/scene/scene_runner.hpp>
 #include <furniture_fem/scene/paper_configurations.hpp>
 
+#include "../support/scene_input.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -44,14 +46,7 @@ const json ramp = {{"source", "points"},
                    {"x", {{0.1, 0.0}, {0.3, 4.0}, {0.5, 4.0}, {0.6, -2.0}}},
                    {"z", {{0.0, 1.0}, {1.0, 3.0}}}};
 
-std::string read_error(const json& j) {
-  try {
-    validate(parse_scene_json(j, "points.json"));
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+std::string read_error(const json& j) { return ffem_test::scene_error(j, "points.json"); }
 
 }  // namespace
 

@@ -9,6 +9,8 @@
 
 #include <furniture_fem/scene/scene_runner.hpp>
 
+#include "../support/scene_input.hpp"
+
 #include "../support/block_scene.hpp"
 
 #include <cmath>
@@ -91,14 +93,7 @@ std::string motion_error(const SceneSpec& s) {
   return "no error";
 }
 
-std::string read_error(const json& j) {
-  try {
-    validate(parse_scene_json(j, "scene.json"));
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+std::string read_error(const json& j) { return ffem_test::scene_error(j, "scene.json"); }
 
 RunOptions quiet() {
   RunOptions o;

@@ -7,6 +7,8 @@
 
 #include <furniture_fem/scene/scene_runner.hpp>
 
+#include "../support/scene_input.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -92,20 +94,9 @@ double ties_force(const Scene& scene) {
   return sum;
 }
 
-SceneSpec read(const json& j) {
-  SceneSpec s = parse_scene_json(j, "restraints.json");
-  validate(s);
-  return s;
-}
+SceneSpec read(const json& j) { return ffem_test::validated_scene(j, "restraints.json"); }
 
-std::string read_error(const json& j) {
-  try {
-    read(j);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+std::string read_error(const json& j) { return ffem_test::scene_error(j, "restraints.json"); }
 
 }  // namespace
 

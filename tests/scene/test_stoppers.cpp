@@ -6,7 +6,7 @@
 
 #include <furniture_fem/scene/scene_runner.hpp>
 
-#include "../support/input_errors.hpp"
+#include "../support/scene_input.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -86,15 +86,9 @@ double tilt_deg(const Scene& scene) {
   return std::acos(std::clamp(scene.sim->rotation(hub)(2, 2), -1.0, 1.0)) * 180 / pi;
 }
 
-SceneSpec read(const json& j) {
-  SceneSpec s = parse_scene_json(j, "stoppers.json");
-  validate(s);
-  return s;
-}
+SceneSpec read(const json& j) { return ffem_test::validated_scene(j, "stoppers.json"); }
 
-std::string read_error(const json& j) {
-  return ffem_test::input_error([&] { read(j); });
-}
+std::string read_error(const json& j) { return ffem_test::scene_error(j, "stoppers.json"); }
 
 const Block blocks[] = {{0.6, 0.4, 1.6, 0.8, 80}, {0.9, 0.45, 1.8, 0.85, 120}};
 
