@@ -48,14 +48,7 @@ json block_scene(const json& z, std::optional<double> ceiling, double duration) 
 std::string read_error(const json& j) { return ffem_test::scene_error(j, "ceiling.json"); }
 
 std::string build_error(const json& j) {
-  try {
-    const SceneSpec spec = parse_scene_json(j, "ceiling.json");
-    validate(spec);
-    const SceneSimulation<DirectLdltSolver> scene(spec);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
+  return ffem_test::input_error([&] { const SceneSimulation<DirectLdltSolver> scene(ffem_test::validated_scene(j, "ceiling.json")); });
 }
 
 // A point mass on a rigid floor in the table's frame under the same table motion: its highest rise

@@ -1,7 +1,8 @@
-// The item parameters mass_scale, friction_scale and alpha_scale (what studies perturb): each changes
-// the item as built by exactly its factor, and a run sees it.
+// The item parameters mass_scale, friction_scale and alpha_scale (what studies perturb) and
+// stiffness_scale: each changes the item as built by exactly its factor, and a run sees it.
 #include <catch2/catch.hpp>
 
+#include <furniture_fem/core/modal.hpp>
 #include <furniture_fem/scene/scene_runner.hpp>
 
 #include <string>
@@ -91,6 +92,49 @@ TEST_CASE("a run sees friction_scale: a block held at 0.25 g slides once its fri
   };
   CHECK(slide(1.0) < 1e-4);
   CHECK(slide(0.5) == Approx(0.5 * 0.1 * g * 0.25).epsilon(0.03));  // the onset and the stick spring: ~1 %
+}
+
+TEST_CASE("stiffness_scale multiplies the members' moduli: a flexible item's frequencies by its square root",
+          "[scene][scales]") {
+  // K scales by f (E and G = E / (2 (1 + nu)) both do), the lumped mass not at all: every elastic
+  // natural frequency of the free item scales by sqrt(f) (modal_analysis, its rigid-body modes removed).
+  // A small locker on a coarse grid (51 nodes), so that the dense eigenproblem is quick.
+  const auto locker = [](const json& params, const std::string& fidelity = "coarse") {
+    json p = {{"width", 0.5}, {"depth", 0.4}, {"height", 0.8}, {"grid_scale", 5.0}, {"element_length", 0.2}};
+    p.update(params);
+    return json{{"name", "frame"},
+                {"items", {{{"kind", "locker"}, {"name", "crate"}, {"fidelity", fidelity}, {"params", p}}}},
+                {"ground_motion", {{"source", "points"}, {"x", {{0.0, 0.0}, {1.0, 0.0}}}}},
+                {"duration", 0.1}};
+  };
+  const auto frequencies = [&](const json& params) {
+    SceneSimulation<DirectLdltSolver> scene(parse_scene_json(locker(params), "frame.json"));
+    const Model& m = *scene.model;
+    for (int e : m.body(scene.items[0].body).elements)
+      CHECK(m.material_of(e).E == Approx(206e9 * params.value("stiffness_scale", 1.0)).epsilon(1e-15));
+    return modal_analysis(*scene.sim, scene.items[0].body, 6).omega;
+  };
+  const std::vector<double> plain = frequencies(json::object());
+  REQUIRE(plain.size() == 6);
+  for (double f : {0.05, 4.0, 100.0}) {
+    const std::vector<double> scaled = frequencies({{"stiffness_scale", f}});
+    REQUIRE(scaled.size() == 6);
+    for (std::size_t i = 0; i < plain.size(); ++i) {
+      INFO("mode " << i << " of the frame at " << f << " times its stiffness");
+      CHECK(scaled[i] == Approx(std::sqrt(f) * plain[i]).epsilon(1e-9));
+    }
+  }
+  // Read, written back, range-checked; a rigid item, or one `auto` leaves rigid, has nothing to scale.
+  const SceneSpec s = parse_scene_json(locker({{"stiffness_scale", 2.5}}), "frame.json");
+  CHECK(*s.items[0].params.stiffness_scale == 2.5);
+  CHECK(to_json(parse_scene_json(to_json(s), "again")) == to_json(s));
+  CHECK_THROWS_WITH(parse_scene_json(locker({{"stiffness_scale", 0.0}}), "bad.json"),
+                    Contains("items[0].params.stiffness_scale") && Contains("[0.001, 1000]"));
+  for (const std::string fidelity : {"rigid", "auto"})
+    CHECK_THROWS_WITH(validate(parse_scene_json(locker({{"stiffness_scale", 2.0}}, fidelity), "rigid.json")),
+                      Contains("items[0].params.stiffness_scale") && Contains("no frame stiffness to scale") &&
+                          Contains("(got 2)"));
+  CHECK_NOTHROW(validate(parse_scene_json(locker({{"stiffness_scale", 2.0}}, "full"), "full.json")));
 }
 
 }  // namespace item_scales_tests

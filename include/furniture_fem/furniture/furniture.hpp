@@ -162,6 +162,16 @@ struct BuildOptions {
   std::optional<double> mass_kg, cog_h, cog_d1;
   // Static friction for the 0.8 rule of generic items (defaults: tall cabinet or desk on carpet).
   std::optional<double> mu_static_long, mu_static_short;
+  // Multiplies the members' Young's modulus (and so their shear modulus): the frame's stiffness, for
+  // sensitivity studies and for checking a flexible item against its rigid limit. Nothing else changes.
+  double stiffness_scale = 1.0;
+
+  // The material of the item's members: steel, its moduli times stiffness_scale.
+  Material member_material() const {
+    Material m = Material::steel();
+    m.E *= stiffness_scale;
+    return m;
+  }
 
   double effective_grid_scale() const { return grid_scale * (coarse_mesh() ? 2.0 : 1.0); }
   double effective_element_length() const { return element_length * (coarse_mesh() ? 2.0 : 1.0); }
@@ -388,7 +398,7 @@ inline std::array<int, 2> longest_line_along(const Model& model, const ItemInfo&
 }
 
 inline ItemInfo realize(Model& model, const Blueprint& bp, const Placement& placement, const BuildOptions& opts) {
-  const int material = find_or_add_material(model, Material::steel());
+  const int material = find_or_add_material(model, opts.member_material());
   ItemInfo info;
   info.name = bp.name;
   info.kind = bp.kind;

@@ -131,7 +131,9 @@ inline void lean_on_stoppers(const SceneSpec& scene, std::vector<ItemInfo>& bodi
 // Builds item `index` of the scene into `model`: one ItemInfo per body (the separated cabinets give
 // "<name>/lower" then "<name>/upper"), with the item's contact overrides applied.
 // Whether a scene models an item as a rigid body: `rigid`, or `auto` when no sectional force of it is asked for.
-inline bool item_is_rigid(const SceneSpec& s, const ItemInfo& item) {
+// `Item`: the scene's ItemSpec, or an ItemInfo as built (its fidelity and name are the spec's).
+template <class Item>
+bool item_is_rigid(const SceneSpec& s, const Item& item) {
   if (item.fidelity == Fidelity::rigid) return true;
   if (item.fidelity != Fidelity::automatic) return false;
   for (const auto& r : s.outputs.sectional_forces)
@@ -151,6 +153,7 @@ inline std::vector<ItemInfo> build_item(const SceneSpec& scene, size_t index, Mo
   o.mass_kg = p.mass_kg;
   o.cog_h = p.cog_h;
   o.cog_d1 = p.cog_d1;
+  o.stiffness_scale = p.stiffness_scale.value_or(o.stiffness_scale);
   const Placement at = Placement::at(item.x, item.y, item.yaw_deg, scene.table.floor_z);
   const ItemKindEntry& kind = item_kind_of(item);
   std::vector<ItemInfo> out = kind.build(model, at, kind.values(p.kind_values), o);

@@ -23,7 +23,7 @@ struct CommonItemParameter {
   std::string_view default_text;  // for the docs table
 };
 
-inline constexpr std::array<CommonItemParameter, 15> common_item_parameters{{
+inline constexpr std::array<CommonItemParameter, 16> common_item_parameters{{
     {{"panel_spacing", "m", 0.02, 5.0, false, 0, "panel grid spacing"}, &ItemParams::panel_spacing, false,
      "the kind's tuned value"},
     {{"grid_scale", "-", 0.1, 20.0, false, 0, "multiplies the panel grid spacing (0.5 finer, 2 coarser)"},
@@ -54,6 +54,9 @@ inline constexpr std::array<CommonItemParameter, 15> common_item_parameters{{
      &ItemParams::friction_scale, false, "1"},
     {{"alpha_scale", "-", 0.001, 1000.0, false, 0, "multiplies the contact penalty coefficient alpha"},
      &ItemParams::alpha_scale, false, "1"},
+    {{"stiffness_scale", "-", 0.001, 1000.0, false, 0,
+      "multiplies the Young's and shear moduli of the item's members; `full` and `coarse` items only"},
+     &ItemParams::stiffness_scale, false, "1"},
 }};
 
 // Whether `params` sets the common parameter `key` (false for a key that is not one).

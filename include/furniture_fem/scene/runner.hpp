@@ -622,11 +622,10 @@ SettledStart settle_at_rest(const SceneSpec& spec, int threads, typename SceneSi
 // The explicit contact's stable step of a built scene, checked against its dt (check_contact_step).
 template <class Solver>
 ContactStepEstimate checked_contact_step(const SceneSpec& spec, const SceneSimulation<Solver>& scene) {
-  const ContactStepEstimate est =
-      contact_step_estimate(*scene.sim, *scene.model, scene.items,
-                            scene_body_contacts(spec, *scene.model, scene.items), spec.contact.law);
+  const auto contacts = scene_body_contacts(spec, *scene.model, scene.items);
+  const ContactStepEstimate est = contact_step_estimate(*scene.sim, *scene.model, scene.items, contacts, spec.contact.law);
   check_contact_step(spec, est);
-  check_restraint_step(spec, scene.sim->contact().restraints(), scene_body_contacts(spec, *scene.model, scene.items),
+  check_restraint_step(spec, scene.sim->contact().restraints(), contacts,
                        [&](int n) {
                          const int b = scene.model->node(n).body;
                          const bool rigid = std::find(scene.rigid_bodies.begin(), scene.rigid_bodies.end(), b) != scene.rigid_bodies.end();

@@ -77,6 +77,9 @@ struct ItemParams {
   // gravity kept), every friction coefficient (floor, wall, item), the penalty alpha. For studies that
   // perturb an item without knowing its kind's defaults (docs/study/studies.md).
   std::optional<double> mass_scale, friction_scale, alpha_scale;
+  // A factor on the Young's modulus of the item's members (BuildOptions::stiffness_scale): finite-element
+  // items only, since a rigid one has no stiffness to scale.
+  std::optional<double> stiffness_scale;
   std::map<std::string, double> kind_values;                         // the kind's own parameters
 };
 

@@ -212,6 +212,12 @@ inline void validate(const SceneSpec& s) {
       if (common_parameter_given(item.params, key))
         fail(path + ".params." + std::string(key), "not used by contact law \"" + std::string(law.name) + "\" (" +
                                                        std::string(law.unused_item_parameters_why) + ")");
+    if (item.params.stiffness_scale && item_is_rigid(s, item))
+      fail(path + ".params.stiffness_scale",
+           "a rigid item has no frame stiffness to scale (fidelity \"" + to_string(item.fidelity) + "\"" +
+               (item.fidelity == Fidelity::automatic ? ", rigid since no sectional force of it is asked for" : "") +
+               "); give the item fidelity \"full\" or \"coarse\", or remove the key (got " +
+               detail::fmt(*item.params.stiffness_scale) + ")");
     const Vec3 size = item_size(item);
     if (item.params.cog_h && *item.params.cog_h >= size.z())
       fail(path + ".params.cog_h", "must lie below the item's height " + detail::fmt(size.z()) + " m (got " +
