@@ -11,13 +11,13 @@
 #error "furniture_fem/contact/detail/support_points.hpp is internal: include <furniture_fem/contact/room_contact.hpp>"
 #endif
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <type_traits>
 #include <vector>
 
+#include "../../core/dense_kernels.hpp"
 #include "../../core/model.hpp"
 #include "../cgal_adapter.hpp"
 
@@ -111,7 +111,7 @@ inline std::vector<int> face_corners(const Points& P, const std::vector<int>& so
   c /= static_cast<double>(on.size());
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   for (int n : on) cov += (X(n) - c) * (X(n) - c).transpose();
-  const Vec3 fit = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
+  const Vec3 fit = detail::smallest_eigenvector(cov);
   const Vec3 u = fit.unitOrthogonal(), v = fit.cross(u);
   struct Corner {
     double x, y;

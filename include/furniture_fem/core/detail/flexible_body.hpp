@@ -6,6 +6,7 @@
 #ifndef FURNITURE_FEM_CORE_INTERNAL
 #error "furniture_fem/core/detail/flexible_body.hpp is internal: include <furniture_fem/core/simulation.hpp>"
 #endif
+#include "../dense_kernels.hpp"
 
 namespace furniture_fem {
 
@@ -504,9 +505,8 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::FlexibleBody {
       J += mass[6 * n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
       h += mass[6 * n] * r.cross(Du.template segment<3>(6 * n) - dc);
     }
-    const Eigen::LDLT<Mat3> ldlt(J);
-    if (ldlt.info() != Eigen::Success || ldlt.rcond() < 1e-9) return;  // a straight bar: no unique turn
-    const Vec3 theta = ldlt.solve(h);
+    Vec3 theta;
+    if (!detail::ldlt_solve_if_regular(J, h, 1e-9, theta)) return;  // a straight bar: no unique turn
     if (!theta.allFinite() || theta.norm() < 1e-12) return;
     const Mat3 C = detail::rotation_exp(theta) - Mat3::Identity() - detail::skew(theta);
     for (int n : bs.nodes) Du.template segment<3>(6 * n) += C * (x[n] - c);

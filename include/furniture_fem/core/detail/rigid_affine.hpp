@@ -15,9 +15,10 @@
 #error "furniture_fem/core/detail/rigid_affine.hpp is internal: include <furniture_fem/core/simulation.hpp>"
 #endif
 #include <Eigen/Core>
-#include <Eigen/QR>
 #include <span>
 #include <type_traits>
+
+#include "../dense_kernels.hpp"
 
 namespace furniture_fem::detail {
 
@@ -116,7 +117,7 @@ AffineField fit_affine_field(std::span<const int> nodes, const RigidMassMoments&
   mean /= mm.mass.w;
   Eigen::Matrix3d cross = Eigen::Matrix3d::Zero();  // sum m (f - mean) rho^T
   for (int n : nodes) cross += m[n] * (f(n) - mean) * (X[n] - mm.centre).transpose();
-  const Eigen::Matrix3d B = cross * mm.mass.second.completeOrthogonalDecomposition().pseudoInverse();
+  const Eigen::Matrix3d B = cross * pseudo_inverse(mm.mass.second);
   // The mean is the field's value at the mean arm (zero up to rounding): a = mean - B mean_arm.
   return {mean - B * (mm.mass.first / mm.mass.w), B};
 }

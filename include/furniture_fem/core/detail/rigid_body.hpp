@@ -6,6 +6,7 @@
 #ifndef FURNITURE_FEM_CORE_INTERNAL
 #error "furniture_fem/core/detail/rigid_body.hpp is internal: include <furniture_fem/core/simulation.hpp>"
 #endif
+#include "../dense_kernels.hpp"
 
 namespace furniture_fem {
 
@@ -42,7 +43,7 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::RigidBody {
       m += sim.mass_[6 * n];
     }
     const Vec3 w = sim.v_.template segment<3>(6 * bs.nodes.front() + 3);  // one angular velocity for all
-    const Vec3 ac = F / m, alpha = I.ldlt().solve(M - w.cross(I * w));
+    const Vec3 ac = F / m, alpha = detail::ldlt_solve(I, M - w.cross(I * w));
     for (int n : bs.nodes) {
       const Vec3 r = sim.x_[n] - c;
       sim.a_.template segment<3>(6 * n) = ac + alpha.cross(r) + w.cross(w.cross(r));
@@ -104,7 +105,7 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::RigidBody {
   // mass reduced to 6 x 6 (T^T r, T^T M* T) and solved.
   static void newton_step(Simulation& sim, detail::BodySystem& bs) {
     const ReducedSystem sys = reduced_system(sim, bs);
-    apply_increment(sim, bs, sys.A.ldlt().solve(sys.R));
+    apply_increment(sim, bs, detail::ldlt_solve(sys.A, sys.R));
   }
 
   // A group of rigid bodies joined by pairs (gather_pair_groups): the members' 6 x 6 systems on the
@@ -122,7 +123,7 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::RigidBody {
       centre[i] = sys.c;
     }
     if constexpr (PairTangentPolicy<Contact>) add_pair_terms(sim, members, centre, A);
-    const Eigen::VectorXd dq = A.partialPivLu().solve(R);
+    const Eigen::VectorXd dq = detail::lu_solve(A, R);
     for (int i = 0; i < n; ++i) apply_increment(sim, sim.systems_[members[i]], dq.template segment<6>(6 * i));
   }
 

@@ -7,8 +7,9 @@
 #endif
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <Eigen/SVD>
 #include <cmath>
+
+#include "../dense_kernels.hpp"
 
 namespace furniture_fem::detail {
 
@@ -53,10 +54,7 @@ Eigen::Matrix3d best_rotation(int n, Fn&& pair_of_point, const Eigen::Vector3d& 
     const auto [X, x] = pair_of_point(i);
     H += (x - xc) * (X - Xc).transpose();
   }
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
-  if ((svd.matrixU() * svd.matrixV().transpose()).determinant() < 0) D(2, 2) = -1;
-  return svd.matrixU() * D * svd.matrixV().transpose();
+  return kabsch_rotation(H);
 }
 
 }  // namespace furniture_fem::detail
