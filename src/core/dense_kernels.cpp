@@ -1,6 +1,18 @@
-// The compiled core's dense kernels (core/dense_kernels.hpp), defined once: programs linking
+// The compiled core's dense kernels (core/dense_kernels.hpp), instantiated once: programs linking
 // furniture_fem::core_compiled call these instead of instantiating the decompositions in every unit.
-// The target compiles its units with FURNITURE_FEM_BUILDING_CORE_LIBRARY: the functions are out of line here
-// (the header declares them without inline) and declared only in simulation_instances.cpp.
+// The target compiles its units with FURNITURE_FEM_BUILDING_CORE_LIBRARY: the header declares the
+// kernels only (as in simulation_instances.cpp); their definitions are included here.
 #define FURNITURE_FEM_CORE_INTERNAL
 #include <furniture_fem/core/detail/dense_kernels_impl.hpp>
+
+namespace furniture_fem::detail {
+
+template Eigen::Matrix3d pseudo_inverse<void>(const Eigen::Matrix3d&);
+template Eigen::Matrix3d kabsch_rotation<void>(const Eigen::Matrix3d&);
+template Eigen::Vector3d ldlt_solve<void>(const Eigen::Matrix3d&, const Eigen::Vector3d&);
+template Eigen::Matrix<double, 6, 1> ldlt_solve<void>(const Eigen::Matrix<double, 6, 6>&, const Eigen::Matrix<double, 6, 1>&);
+template bool ldlt_solve_if_regular<void>(const Eigen::Matrix3d&, const Eigen::Vector3d&, double, Eigen::Vector3d&);
+template Eigen::VectorXd lu_solve<void>(const Eigen::MatrixXd&, const Eigen::VectorXd&);
+template Eigen::Vector3d smallest_eigenvector<void>(const Eigen::Matrix3d&);
+
+}  // namespace furniture_fem::detail

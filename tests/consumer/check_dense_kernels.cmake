@@ -4,7 +4,7 @@
 # text symbol of Eigen's CompleteOrthogonalDecomposition, JacobiSVD, LDLT or SelfAdjointEigenSolver of a
 # 3 x 3 or 6 x 6 matrix). -DOBJECTS=<object files, comma-separated>.
 string(REPLACE "," ";" objects "${OBJECTS}")
-set(kernel "furniture_fem::detail::(pseudo_inverse|kabsch_rotation|ldlt_solve|ldlt_solve_if_regular|lu_solve|smallest_eigenvector)\\(")
+set(kernel "furniture_fem::detail::(pseudo_inverse|kabsch_rotation|ldlt_solve|ldlt_solve_if_regular|lu_solve|smallest_eigenvector)<void>\\(")
 set(fixed "Eigen::Matrix<double, [36], [36], 0, [36], [36]>")
 set(decomposition "Eigen::(CompleteOrthogonalDecomposition|JacobiSVD|LDLT|SelfAdjointEigenSolver)<${fixed}")
 foreach(object IN LISTS objects)
@@ -12,7 +12,7 @@ foreach(object IN LISTS objects)
   if(rc)
     message(FATAL_ERROR "nm failed on ${object}")
   endif()
-  string(REGEX MATCHALL " U ${kernel}" taken "${symbols}")
+  string(REGEX MATCHALL " U [^\n]*${kernel}" taken "${symbols}")
   string(REGEX MATCHALL " [TWtw] [^\n]*${decomposition}[^\n]*" compiled "${symbols}")
   list(LENGTH taken n_taken)
   list(LENGTH compiled n_compiled)

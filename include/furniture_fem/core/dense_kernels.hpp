@@ -1,22 +1,24 @@
 #pragma once
 // furniture_fem/core/dense_kernels.hpp: the small dense decompositions the solver needs (a 3 x 3
 // pseudo-inverse, the Kabsch rotation, 3 x 3 and 6 x 6 LDLT solves, a partial-pivoting LU solve, a
-// symmetric 3 x 3 eigenvector), as plain functions of concrete types.
+// symmetric 3 x 3 eigenvector), as functions of concrete types.
 //
-// Why functions of their own: under GCC 12 each of these Eigen decompositions, instantiated inside a
-// Simulation, costs more to compile than the rest of the simulation; together about half of a unit's
-// front-end time and 0.6 GB of its peak (docs/performance.md section 6, "The dense kernels"). Header-only
-// they are inline, as everything else; a program linking the compiled core (furniture_fem::core_compiled,
-// which defines FURNITURE_FEM_COMPILED_CORE for its users) gets them declared here and compiled once in
-// src/core/dense_kernels.cpp. The results are the same to the bit either way: the same Eigen calls.
+// Why functions of their own: under GCC 12 these Eigen decompositions, instantiated inside a Simulation,
+// are about a third of a unit's front-end time and 0.6 GB of its peak (docs/performance.md section 6,
+// "the dense kernels compiled once"). Header-only
+// they are defined here (detail/dense_kernels_impl.hpp); a program linking the compiled core
+// (furniture_fem::core_compiled, which defines FURNITURE_FEM_COMPILED_CORE for its users) gets them
+// declared only and compiled once in src/core/dense_kernels.cpp. The results are the same to the bit
+// either way: the same Eigen calls.
 #include <Eigen/Core>
 
+// Each is a function template of a defaulted parameter (`template <class = void>`), called without template
+// arguments: header-only, a unit then instantiates a kernel only where a Simulation calls it, as it did
+// the decompositions before (an inline function would instantiate them in every unit that includes this).
 #if defined(FURNITURE_FEM_COMPILED_CORE) || defined(FURNITURE_FEM_BUILDING_CORE_LIBRARY)
 #define FFEM_DENSE_KERNELS_DECLARED_ONLY 1
-#define FFEM_DENSE_KERNEL
-#else
-#define FFEM_DENSE_KERNEL inline
 #endif
+#define FFEM_DENSE_KERNEL template <class = void>
 
 namespace furniture_fem::detail {
 

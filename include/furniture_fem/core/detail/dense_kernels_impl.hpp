@@ -1,7 +1,7 @@
 #pragma once
 // furniture_fem/core/detail/dense_kernels_impl.hpp: the definitions of core/dense_kernels.hpp's
-// functions: inline when the library is used header-only, out of line once in src/core/dense_kernels.cpp
-// for the compiled core.
+// function templates: included by it when the library is used header-only, and instantiated once in
+// src/core/dense_kernels.cpp for the compiled core.
 #ifndef FURNITURE_FEM_CORE_INTERNAL
 #error "furniture_fem/core/detail/dense_kernels_impl.hpp is internal: include <furniture_fem/core/dense_kernels.hpp>"
 #endif
@@ -15,27 +15,32 @@
 
 namespace furniture_fem::detail {
 
-FFEM_DENSE_KERNEL Eigen::Matrix3d pseudo_inverse(const Eigen::Matrix3d& A) {
+template <class Unused>
+Eigen::Matrix3d pseudo_inverse(const Eigen::Matrix3d& A) {
   return A.completeOrthogonalDecomposition().pseudoInverse();
 }
 
-FFEM_DENSE_KERNEL Eigen::Matrix3d kabsch_rotation(const Eigen::Matrix3d& H) {
+template <class Unused>
+Eigen::Matrix3d kabsch_rotation(const Eigen::Matrix3d& H) {
   Eigen::JacobiSVD<Eigen::Matrix3d> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
   Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
   if ((svd.matrixU() * svd.matrixV().transpose()).determinant() < 0) D(2, 2) = -1;
   return svd.matrixU() * D * svd.matrixV().transpose();
 }
 
-FFEM_DENSE_KERNEL Eigen::Vector3d ldlt_solve(const Eigen::Matrix3d& A, const Eigen::Vector3d& b) {
+template <class Unused>
+Eigen::Vector3d ldlt_solve(const Eigen::Matrix3d& A, const Eigen::Vector3d& b) {
   return A.ldlt().solve(b);
 }
 
-FFEM_DENSE_KERNEL Eigen::Matrix<double, 6, 1> ldlt_solve(const Eigen::Matrix<double, 6, 6>& A,
+template <class Unused>
+Eigen::Matrix<double, 6, 1> ldlt_solve(const Eigen::Matrix<double, 6, 6>& A,
                                                          const Eigen::Matrix<double, 6, 1>& b) {
   return A.ldlt().solve(b);
 }
 
-FFEM_DENSE_KERNEL bool ldlt_solve_if_regular(const Eigen::Matrix3d& A, const Eigen::Vector3d& b, double rcond_min,
+template <class Unused>
+bool ldlt_solve_if_regular(const Eigen::Matrix3d& A, const Eigen::Vector3d& b, double rcond_min,
                                              Eigen::Vector3d& x) {
   const Eigen::LDLT<Eigen::Matrix3d> ldlt(A);
   if (ldlt.info() != Eigen::Success || ldlt.rcond() < rcond_min) return false;
@@ -43,11 +48,13 @@ FFEM_DENSE_KERNEL bool ldlt_solve_if_regular(const Eigen::Matrix3d& A, const Eig
   return true;
 }
 
-FFEM_DENSE_KERNEL Eigen::VectorXd lu_solve(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) {
+template <class Unused>
+Eigen::VectorXd lu_solve(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) {
   return A.partialPivLu().solve(b);
 }
 
-FFEM_DENSE_KERNEL Eigen::Vector3d smallest_eigenvector(const Eigen::Matrix3d& symmetric) {
+template <class Unused>
+Eigen::Vector3d smallest_eigenvector(const Eigen::Matrix3d& symmetric) {
   return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(symmetric).eigenvectors().col(0);
 }
 
