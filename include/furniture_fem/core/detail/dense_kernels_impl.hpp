@@ -34,8 +34,7 @@ Eigen::Vector3d ldlt_solve(const Eigen::Matrix3d& A, const Eigen::Vector3d& b) {
 }
 
 template <class Unused>
-Eigen::Matrix<double, 6, 1> ldlt_solve(const Eigen::Matrix<double, 6, 6>& A,
-                                                         const Eigen::Matrix<double, 6, 1>& b) {
+Eigen::Matrix<double, 6, 1> ldlt_solve(const Eigen::Matrix<double, 6, 6>& A, const Eigen::Matrix<double, 6, 1>& b) {
   return A.ldlt().solve(b);
 }
 
