@@ -1,7 +1,7 @@
 #pragma once
 // furniture_fem/core/dense_kernels.hpp: the small dense decompositions the solver needs (a 3 x 3
-// pseudo-inverse, the Kabsch rotation, 3 x 3 and 6 x 6 LDLT solves, a partial-pivoting LU solve, a
-// symmetric 3 x 3 eigenvector), as functions of concrete types.
+// pseudo-inverse, the Kabsch rotation, 3 x 3, 4 x 4 and 6 x 6 LDLT solves, a partial-pivoting LU solve,
+// a symmetric 3 x 3 eigenvector, a symmetric matrix's eigen-decomposition), as functions of concrete types.
 //
 // Why functions of their own: under GCC 12 these Eigen decompositions, instantiated inside a Simulation,
 // are about a third of a unit's front-end time and 0.6 GB of its peak (docs/performance.md section 6,
@@ -31,6 +31,7 @@ FFEM_DENSE_KERNEL Eigen::Matrix3d kabsch_rotation(const Eigen::Matrix3d& H);
 
 // x with A x = b, A symmetric (LDLT with symmetric pivoting).
 FFEM_DENSE_KERNEL Eigen::Vector3d ldlt_solve(const Eigen::Matrix3d& A, const Eigen::Vector3d& b);
+FFEM_DENSE_KERNEL Eigen::Vector4d ldlt_solve(const Eigen::Matrix4d& A, const Eigen::Vector4d& b);
 FFEM_DENSE_KERNEL Eigen::Matrix<double, 6, 1> ldlt_solve(const Eigen::Matrix<double, 6, 6>& A,
                                                          const Eigen::Matrix<double, 6, 1>& b);
 // The same, false (x untouched) when the factorisation fails or its reciprocal condition estimate is
@@ -43,6 +44,14 @@ FFEM_DENSE_KERNEL Eigen::VectorXd lu_solve(const Eigen::MatrixXd& A, const Eigen
 
 // The unit eigenvector of a symmetric 3 x 3 matrix for its smallest eigenvalue (self-adjoint solver).
 FFEM_DENSE_KERNEL Eigen::Vector3d smallest_eigenvector(const Eigen::Matrix3d& symmetric);
+
+// A symmetric matrix's eigenvalues, ascending, and (when asked) its orthonormal eigenvectors, column j
+// for value j (Eigen's self-adjoint solver: tridiagonal QR). Its lower triangle is read.
+struct SymmetricEigen {
+  Eigen::VectorXd values;
+  Eigen::MatrixXd vectors;  // empty when not asked for
+};
+FFEM_DENSE_KERNEL SymmetricEigen symmetric_eigen(const Eigen::MatrixXd& symmetric, bool with_vectors = true);
 
 }  // namespace furniture_fem::detail
 

@@ -2,9 +2,9 @@
 // furniture_fem/core/modal.hpp: natural frequencies and mode shapes of one body at its current state,
 // from the tangent stiffness and the lumped mass (dense generalized eigenproblem: for the small
 // models of verification and tutorials, a few thousand DOFs at most).
-#include <Eigen/Eigenvalues>
 #include <vector>
 
+#include "dense_kernels.hpp"
 #include "simulation.hpp"
 
 namespace furniture_fem {
@@ -34,11 +34,11 @@ ModalResult modal_analysis(Sim& sim, int body, int modes, double rigid_tol = 1e-
   // Symmetric form: M^-1/2 K M^-1/2 (lumped M is diagonal and positive).
   const Eigen::VectorXd s = mf.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd A = s.asDiagonal() * (0.5 * (Kf + Kf.transpose())) * s.asDiagonal();
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(A);
-  const double scale = std::max(1.0, std::sqrt(std::abs(es.eigenvalues().maxCoeff())));
+  const detail::SymmetricEigen es = detail::symmetric_eigen(A);
+  const double scale = std::max(1.0, std::sqrt(std::abs(es.values.maxCoeff())));
   std::vector<int> kept;
   for (int i = 0; i < n; ++i) {
-    const double w = std::sqrt(std::max(0.0, es.eigenvalues()[i]));
+    const double w = std::sqrt(std::max(0.0, es.values[i]));
     if (w < rigid_tol * scale * 1e-3 || w < rigid_tol) {
       ++res.rigid_modes;
       continue;
@@ -49,7 +49,7 @@ ModalResult modal_analysis(Sim& sim, int body, int modes, double rigid_tol = 1e-
     }
   }
   res.shapes.resize(n, kept.size());
-  for (size_t k = 0; k < kept.size(); ++k) res.shapes.col(k) = s.asDiagonal() * es.eigenvectors().col(kept[k]);
+  for (size_t k = 0; k < kept.size(); ++k) res.shapes.col(k) = s.asDiagonal() * es.vectors.col(kept[k]);
   return res;
 }
 

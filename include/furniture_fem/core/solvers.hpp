@@ -13,6 +13,7 @@
 #include <concepts>
 #include <string_view>
 
+#include "dense_kernels.hpp"
 #include "errors.hpp"
 #define FURNITURE_FEM_CORE_INTERNAL
 #include "detail/supernodal_factor.hpp"
@@ -31,6 +32,62 @@ concept LinearSolverPolicy = std::default_initializable<S> &&
   { s.solve(r, x) } -> std::same_as<bool>;
 };
 
+namespace detail {
+
+using SimplicialLdlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower>;
+using IncompleteCholeskyCg =
+    Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper, Eigen::IncompleteCholesky<double>>;
+
+// The solvers' Eigen work as kernels (core/dense_kernels.hpp): templates of a defaulted parameter, so a
+// program linking the compiled core takes them from it (the extern declarations below) and a header-only
+// one instantiates them where a solver is used. Under GCC 12 these sparse classes were 7 of the 41 s
+// that including the scene runner took, syntax only (docs/performance.md section 6).
+
+// The symbolic analysis of K's pattern.
+FFEM_DENSE_KERNEL void analyse_ldlt(SimplicialLdlt& ldlt, const SparseMatrix& K) { ldlt.analyzePattern(K); }
+
+// The numeric factorisation, its factor repacked into supernodes; false when K is not positive definite.
+FFEM_DENSE_KERNEL bool factorize_ldlt(SimplicialLdlt& ldlt, SupernodalFactor& factor, const SparseMatrix& K) {
+  ldlt.factorize(K);
+  if (ldlt.info() != Eigen::Success) return false;
+  factor.assign(ldlt.matrixL().nestedExpression());
+  return true;
+}
+
+// x = P^T L^-T D^-1 L^-1 P r, what Eigen's solve computes, with the repacked factor (work: scratch).
+FFEM_DENSE_KERNEL void solve_ldlt(const SimplicialLdlt& ldlt, const SupernodalFactor& factor, const Eigen::VectorXd& r,
+                                  Eigen::VectorXd& work, Eigen::VectorXd& x) {
+  work = ldlt.permutationP() * r;
+  factor.solve_lower(work);
+  work.array() /= ldlt.vectorD().array();
+  factor.solve_upper(work);
+  x = ldlt.permutationPinv() * work;
+}
+
+// The incomplete-Cholesky preconditioner of K (kept by reference: K must outlive the solves); false when
+// it fails.
+FFEM_DENSE_KERNEL bool compute_cg(IncompleteCholeskyCg& cg, const SparseMatrix& K) {
+  cg.compute(K);
+  return cg.info() == Eigen::Success;
+}
+
+// x = K^-1 r by CG warm-started from x; the iterations it took.
+FFEM_DENSE_KERNEL long solve_cg(const IncompleteCholeskyCg& cg, const Eigen::VectorXd& r, Eigen::VectorXd& x) {
+  x = cg.solveWithGuess(r, x);
+  return cg.iterations();
+}
+
+#ifdef FFEM_DENSE_KERNELS_DECLARED_ONLY
+extern template void analyse_ldlt<void>(SimplicialLdlt&, const SparseMatrix&);
+extern template bool factorize_ldlt<void>(SimplicialLdlt&, SupernodalFactor&, const SparseMatrix&);
+extern template void solve_ldlt<void>(const SimplicialLdlt&, const SupernodalFactor&, const Eigen::VectorXd&,
+                                      Eigen::VectorXd&, Eigen::VectorXd&);
+extern template bool compute_cg<void>(IncompleteCholeskyCg&, const SparseMatrix&);
+extern template long solve_cg<void>(const IncompleteCholeskyCg&, const Eigen::VectorXd&, Eigen::VectorXd&);
+#endif
+
+}  // namespace detail
+
 // Sparse direct LDL^T (Eigen's simplicial, AMD ordering). The symbolic analysis is done once per
 // pattern; the numeric factorisation is redone only when the simulation refreshes the matrix, and its
 // factor is then repacked into dense supernodes (detail/supernodal_factor.hpp) for the many
@@ -38,32 +95,25 @@ concept LinearSolverPolicy = std::default_initializable<S> &&
 class DirectLdltSolver {
  public:
   static constexpr std::string_view name = "sparse direct LDL^T (reused)";
-  void analyse(const SparseMatrix& K) { ldlt_.analyzePattern(K); }
+  void analyse(const SparseMatrix& K) { detail::analyse_ldlt(ldlt_, K); }
   void factorize(const SparseMatrix& K) {
-    ldlt_.factorize(K);
-    if (ldlt_.info() != Eigen::Success)
+    if (!detail::factorize_ldlt(ldlt_, factor_, K))
       throw SimulationError(0, "sparse LDL^T factorisation failed: the effective matrix is not positive definite "
                                "(a free body without mass, or an unconstrained static model?)");
-    factor_.assign(ldlt_.matrixL().nestedExpression());
     ++factorizations_;
   }
-  // x = P^T L^-T D^-1 L^-1 P r, what Eigen's solve computes, with the repacked factor.
-  // False before the first factorisation: Eigen's info() may not be asked then (an assertion in builds
+  // x = K^-1 r by the repacked factor (detail::solve_ldlt). False before the first factorisation: Eigen's info() may not be asked then (an assertion in builds
   // without NDEBUG: the sanitized core group aborted here, 2026-11-27).
   bool solve(const Eigen::VectorXd& r, Eigen::VectorXd& x) {
     if (factorizations_ == 0 || ldlt_.info() != Eigen::Success || ldlt_.vectorD().size() != r.size()) return false;
-    work_ = ldlt_.permutationP() * r;
-    factor_.solve_lower(work_);
-    work_.array() /= ldlt_.vectorD().array();
-    factor_.solve_upper(work_);
-    x = ldlt_.permutationPinv() * work_;
+    detail::solve_ldlt(ldlt_, factor_, r, work_, x);
     return x.allFinite();
   }
   long factorizations() const { return factorizations_; }
   const detail::SupernodalFactor& factor() const { return factor_; }
 
  private:
-  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> ldlt_;
+  detail::SimplicialLdlt ldlt_;
   detail::SupernodalFactor factor_;
   Eigen::VectorXd work_;
   long factorizations_ = 0;
@@ -81,15 +131,13 @@ class ConjugateGradientSolver {
     K_ = K;
     cg_.setTolerance(tolerance);
     cg_.setMaxIterations(max_iterations);
-    cg_.compute(K_);
-    if (cg_.info() != Eigen::Success)
+    if (!detail::compute_cg(cg_, K_))
       throw SimulationError(0, "incomplete Cholesky preconditioner failed: the effective matrix is not positive definite");
     ++factorizations_;
   }
   bool solve(const Eigen::VectorXd& r, Eigen::VectorXd& x) {
     if (x.size() != r.size()) x.setZero(r.size());
-    x = cg_.solveWithGuess(r, x);
-    iterations_ += cg_.iterations();
+    iterations_ += detail::solve_cg(cg_, r, x);
     return x.allFinite();
   }
   long factorizations() const { return factorizations_; }
@@ -97,7 +145,7 @@ class ConjugateGradientSolver {
 
  private:
   SparseMatrix K_;
-  Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper, Eigen::IncompleteCholesky<double>> cg_;
+  detail::IncompleteCholeskyCg cg_;
   long factorizations_ = 0, iterations_ = 0;
 };
 

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "../core/dense_kernels.hpp"
 #include "../core/errors.hpp"
 #include "record_io.hpp"
 #define FURNITURE_FEM_EXCITATION_INTERNAL
@@ -110,10 +111,10 @@ inline ShearBuilding ShearBuilding::uniform(int storeys, double first_period, do
   }
   Eigen::VectorXd s(n);  // M^-1/2
   for (int i = 0; i < n; ++i) s[i] = 1 / std::sqrt(b.floor_mass[i]);
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(s.asDiagonal() * K * s.asDiagonal());
+  const detail::SymmetricEigen eig = detail::symmetric_eigen(Eigen::MatrixXd(s.asDiagonal() * K * s.asDiagonal()));
   BuildingModes m;
-  m.omega = eig.eigenvalues().cwiseMax(0).cwiseSqrt();
-  m.shape = s.asDiagonal() * eig.eigenvectors();  // phi^T M phi = I
+  m.omega = eig.values.cwiseMax(0).cwiseSqrt();
+  m.shape = s.asDiagonal() * eig.vectors;  // phi^T M phi = I
   Eigen::VectorXd M1(n);
   for (int i = 0; i < n; ++i) M1[i] = b.floor_mass[i];
   m.participation = m.shape.transpose() * M1;

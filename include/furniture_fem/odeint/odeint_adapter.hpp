@@ -28,7 +28,6 @@
 // Style note (odeint passes systems and steppers by value): the system holds a pointer to the
 // Simulation and no buffers, so its copies are cheap and all act on the same model.
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 #include <boost/numeric/odeint/integrate/integrate_const.hpp>
 #include <boost/numeric/odeint/stepper/runge_kutta4.hpp>
 #include <algorithm>
@@ -37,6 +36,7 @@
 #include <functional>
 #include <vector>
 
+#include "../core/dense_kernels.hpp"
 #include "../core/simulation.hpp"
 
 namespace furniture_fem {
@@ -148,8 +148,8 @@ class OdeintSystem {
         for (int c = 0; c < k; ++c)
           A(a, c) = 0.5 * (K(free[a], free[c]) + K(free[c], free[a])) / std::sqrt(m[free[a]] * m[free[c]]);
       if (k == 0) continue;
-      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(A, Eigen::EigenvaluesOnly);
-      wmax = std::max(wmax, std::sqrt(std::max(0.0, es.eigenvalues().maxCoeff())));
+      const double largest = detail::symmetric_eigen(A, false).values.maxCoeff();
+      wmax = std::max(wmax, std::sqrt(std::max(0.0, largest)));
     }
     return wmax;
   }

@@ -78,7 +78,7 @@ struct ContactChange {
 struct Woodbury {
   std::vector<int> at;
   int m = 0;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+  DenseLu lu;
 };
 
 // One body's sparse effective matrix with a fixed pattern and, per element, the positions of its

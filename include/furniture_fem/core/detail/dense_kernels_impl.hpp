@@ -34,13 +34,17 @@ Eigen::Vector3d ldlt_solve(const Eigen::Matrix3d& A, const Eigen::Vector3d& b) {
 }
 
 template <class Unused>
+Eigen::Vector4d ldlt_solve(const Eigen::Matrix4d& A, const Eigen::Vector4d& b) {
+  return A.ldlt().solve(b);
+}
+
+template <class Unused>
 Eigen::Matrix<double, 6, 1> ldlt_solve(const Eigen::Matrix<double, 6, 6>& A, const Eigen::Matrix<double, 6, 1>& b) {
   return A.ldlt().solve(b);
 }
 
 template <class Unused>
-bool ldlt_solve_if_regular(const Eigen::Matrix3d& A, const Eigen::Vector3d& b, double rcond_min,
-                                             Eigen::Vector3d& x) {
+bool ldlt_solve_if_regular(const Eigen::Matrix3d& A, const Eigen::Vector3d& b, double rcond_min, Eigen::Vector3d& x) {
   const Eigen::LDLT<Eigen::Matrix3d> ldlt(A);
   if (ldlt.info() != Eigen::Success || ldlt.rcond() < rcond_min) return false;
   x = ldlt.solve(b);
@@ -55,6 +59,15 @@ Eigen::VectorXd lu_solve(const Eigen::MatrixXd& A, const Eigen::VectorXd& b) {
 template <class Unused>
 Eigen::Vector3d smallest_eigenvector(const Eigen::Matrix3d& symmetric) {
   return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(symmetric).eigenvectors().col(0);
+}
+
+template <class Unused>
+SymmetricEigen symmetric_eigen(const Eigen::MatrixXd& symmetric, bool with_vectors) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(symmetric, with_vectors ? Eigen::ComputeEigenvectors
+                                                                                  : Eigen::EigenvaluesOnly);
+  SymmetricEigen result{es.eigenvalues(), {}};
+  if (with_vectors) result.vectors = es.eigenvectors();
+  return result;
 }
 
 }  // namespace furniture_fem::detail

@@ -7,6 +7,7 @@
 #error "furniture_fem/core/detail/flexible_body.hpp is internal: include <furniture_fem/core/simulation.hpp>"
 #endif
 #include "../dense_kernels.hpp"
+#include "lu_kernels.hpp"
 
 namespace furniture_fem {
 
@@ -161,7 +162,7 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::FlexibleBody {
           Z.block(3 * j, w.at[a], 3, ca.dim) = bs.contact_columns.block(6 * locals[j], bs.contact_column[ca.local], 3, ca.dim);
         }
       }
-      const Eigen::MatrixXd Y = w.lu.solve(X);
+      const Eigen::MatrixXd Y = detail::solve_lu(w.lu, X);
       if (!Y.allFinite()) return false;
       G.noalias() -= Z * Y;
     }
@@ -418,7 +419,7 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::FlexibleBody {
         S.block(w.at[a], w.at[c], ca.dim, changes[c].dim) =
             bs.contact_columns.block(6 * ca.local, bs.contact_column[changes[c].local], ca.dim, changes[c].dim);
     }
-    w.lu.compute(Eigen::MatrixXd::Identity(w.m, w.m) + D * S);
+    detail::factorize_lu(w.lu, Eigen::MatrixXd(Eigen::MatrixXd::Identity(w.m, w.m) + D * S));
     return true;
   }
   // Puts the changes on a solution x of the factorised matrix (bs.dx, or a refinement's vector) by the
@@ -438,7 +439,7 @@ struct Simulation<Element, Integrator, LinearSolver, Contact>::FlexibleBody {
       if (ca.dim == 3) rhs.template segment<3>(w.at[a]) = Mat3(ca.d.template topLeftCorner<3, 3>()) * x.template segment<3>(6 * ca.local);
       else rhs.template segment<6>(w.at[a]) = ca.d * x.template segment<6>(6 * ca.local);
     }
-    const Eigen::VectorXd y = w.lu.solve(rhs);
+    const Eigen::VectorXd y = detail::solve_lu(w.lu, rhs);
     if (!y.allFinite()) return false;
     for (std::size_t c = 0; c < changes.size(); ++c) {
       const int col = bs.contact_column[changes[c].local];

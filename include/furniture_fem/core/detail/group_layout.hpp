@@ -13,6 +13,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "lu_kernels.hpp"
+
 namespace furniture_fem::detail {
 
 struct GroupLayout {
@@ -25,7 +27,7 @@ struct GroupLayout {
 struct GroupFactor {
   GroupLayout layout;
   Eigen::MatrixXd matrix;  // I + D G as factorised: a checkpoint restores the LU from it, to the bit
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+  DenseLu lu;
   bool empty() const { return layout.nodes.empty(); }
   // In checkpoints the layout and the matrix; the loading simulation factorises it again (the same LU).
   template <class Self, class Archive>
@@ -33,7 +35,7 @@ struct GroupFactor {
   friend void transfer_state(Self& f, Archive& ar) {
     ar(f.layout.members, f.layout.nodes, f.layout.first, f.layout.locals, f.matrix);
     if constexpr (!Archive::saving)
-      if (f.matrix.size() > 0) f.lu.compute(f.matrix);
+      if (f.matrix.size() > 0) factorize_lu(f.lu, f.matrix);
   }
 };
 

@@ -13,6 +13,8 @@
 #include <unsupported/Eigen/IterativeSolvers>
 #include <utility>
 
+#include "lu_kernels.hpp"
+
 namespace furniture_fem::detail {
 class ProductOperator;
 }
@@ -51,7 +53,7 @@ class LuPreconditioner {
  public:
   using StorageIndex = int;
   enum { ColsAtCompileTime = Eigen::Dynamic, MaxColsAtCompileTime = Eigen::Dynamic };
-  void set(const Eigen::PartialPivLU<Eigen::MatrixXd>* lu) { lu_ = lu; }
+  void set(const DenseLu* lu) { lu_ = lu; }
   template <class M>
   LuPreconditioner& analyzePattern(const M&) { return *this; }
   template <class M>
@@ -63,7 +65,7 @@ class LuPreconditioner {
   Eigen::ComputationInfo info() const { return Eigen::Success; }
 
  private:
-  const Eigen::PartialPivLU<Eigen::MatrixXd>* lu_ = nullptr;
+  const DenseLu* lu_ = nullptr;
 };
 
 }  // namespace furniture_fem::detail
@@ -89,8 +91,10 @@ namespace furniture_fem::detail {
 // Solves A y = b (A by its product) by GMRES preconditioned with lu, the LU of a matrix near A: a
 // low-rank change of that matrix takes about its rank in iterations. False when the relative
 // preconditioned residual has not reached tolerance within max_iterations (y is then not the solution).
-inline bool solve_near(Eigen::Index n, ProductOperator::Apply times_A, const Eigen::PartialPivLU<Eigen::MatrixXd>& lu,
-                       const Eigen::VectorXd& b, Eigen::VectorXd& y, int max_iterations, double tolerance) {
+// A kernel (core/dense_kernels.hpp): instantiated only where a simulation calls it, and once in the
+// compiled core for its users.
+FFEM_DENSE_KERNEL bool solve_near(Eigen::Index n, ProductOperator::Apply times_A, const DenseLu& lu,
+                                  const Eigen::VectorXd& b, Eigen::VectorXd& y, int max_iterations, double tolerance) {
   const ProductOperator A(n, std::move(times_A));
   Eigen::GMRES<ProductOperator, LuPreconditioner> gmres;
   gmres.preconditioner().set(&lu);
@@ -101,5 +105,9 @@ inline bool solve_near(Eigen::Index n, ProductOperator::Apply times_A, const Eig
   y = gmres.solve(b);
   return gmres.info() == Eigen::Success && y.allFinite();
 }
+#ifdef FFEM_DENSE_KERNELS_DECLARED_ONLY
+extern template bool solve_near<void>(Eigen::Index, ProductOperator::Apply, const DenseLu&,
+                                      const Eigen::VectorXd&, Eigen::VectorXd&, int, double);
+#endif
 
 }  // namespace furniture_fem::detail

@@ -286,8 +286,8 @@ inline bool Simulation<Element, Integrator, LinearSolver, Contact>::solve_flexib
     if (!near_kept || !detail::solve_near(3 * n, times_A, kept.lu, rhs, y, 20, 1e-12)) {
       kept.layout = g;
       kept.matrix = group_matrix(g, G);
-      kept.lu.compute(kept.matrix);
-      y = kept.lu.solve(rhs);
+      detail::factorize_lu(kept.lu, kept.matrix);
+      y = detail::solve_lu(kept.lu, rhs);
     }
     if (!y.allFinite()) return;
     for (std::size_t i = 0; i < members.size(); ++i)

@@ -15,7 +15,6 @@
 #ifndef FURNITURE_FEM_FURNITURE_INTERNAL
 #error "furniture_fem/furniture/detail/furniture_calibration.hpp is internal: include <furniture_fem/furniture/furniture.hpp>"
 #endif
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -23,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "../../core/dense_kernels.hpp"
 #include "../../core/model.hpp"
 
 namespace furniture_fem {
@@ -92,7 +92,7 @@ inline MassCalibration calibrate_mass(Model& model, int body, const Mat3& R, con
       converged = true;
       break;
     }
-    const Vec4 step = -H.ldlt().solve(g);
+    const Vec4 step = -detail::ldlt_solve(H, g);
     // Backtracking keeps the convex dual decreasing; the last term lets the final Newton steps through
     // once the decrease is below the round-off of f itself.
     double a = 1.0;
